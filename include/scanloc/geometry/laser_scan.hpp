@@ -1,0 +1,56 @@
+#pragma once
+// A planar laser scan: N ranges at evenly spaced bearings, in the laser's own frame.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "scanloc/geometry/pose2d.hpp"
+
+namespace scanloc {
+
+// The angular layout and range limits shared by a real scan and the scans simulated for it.
+struct ScanLayout {
+  std::size_t beam_count = 0;        // number of beams
+  double angle_min_rad = 0.0;        // bearing of beam 0 in the laser frame
+  double angle_increment_rad = 0.0;  // bearing step between consecutive beams (> 0)
+  double range_min_m = 0.0;          // ranges at or below this carry no echo
+  double range_max_m = 20.0;         // ranges at or beyond this carry no echo (the Acuity's 20 m)
+
+  double Bearing(std::size_t beam) const { return angle_min_rad + beam * angle_increment_rad; }
+};
+
+struct LaserScan {
+  ScanLayout layout;
+  std::vector<double> ranges_m;     // the trials coded "no echo" as -1.0
+  std::vector<double> reflectance;  // empty, or one value per beam
+  double timestamp_s = 0.0;
+
+  std::size_t size() const { return ranges_m.size(); }
+  // Throws std::invalid_argument unless the layout is usable and matches the ranges (and the
+  // reflectance, when present).
+  void CheckConsistent() const;
+  // A range is valid when finite, above range_min_m and below range_max_m.
+  bool IsValid(std::size_t beam) const;
+  std::size_t CountValid() const;
+  // The beam's end point in the laser frame (meaningful for valid beams only).
+  Eigen::Vector2d Point(std::size_t beam) const;
+};
+
+// True when the range is finite, above range_min_m and below range_max_m.
+bool IsValidRange(double range_m, const ScanLayout& layout);
+
+// A layout of `beam_count` beams over `fov_rad`, centred on the heading. For a full revolution
+// (fov = 2π) the last beam stops one step short of the first.
+ScanLayout MakeLayout(std::size_t beam_count, double fov_rad, double range_max_m);
+
+// The laser's fixed mounting on the robot: T_robot_laser. Postures are reported in robot
+// coordinates; scans are simulated from T_world_laser = T_world_robot * T_robot_laser.
+struct LaserMounting {
+  Pose2D T_robot_laser;
+  Pose2D LaserPose(const Pose2D& T_world_robot) const { return T_world_robot * T_robot_laser; }
+  Pose2D RobotPose(const Pose2D& T_world_laser) const {
+    return T_world_laser * T_robot_laser.Inverse();
+  }
+};
+
+}  // namespace scanloc

@@ -1,0 +1,35 @@
+#pragma once
+// A planar rigid transform (x, y, θ): the posture of a frame in another frame.
+
+#include <Eigen/Core>
+#include <cmath>
+#include <iosfwd>
+
+namespace scanloc {
+
+// Wraps an angle to (-π, π].
+double NormalizeAngle(double angle_rad);
+
+// T_a_b: the pose of frame b expressed in frame a. Composition T_a_c = T_a_b * T_b_c.
+struct Pose2D {
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double yaw_rad = 0.0;
+
+  Pose2D() = default;
+  Pose2D(double x, double y, double yaw) : x_m(x), y_m(y), yaw_rad(yaw) {}
+
+  Pose2D operator*(const Pose2D& other) const;
+  Pose2D Inverse() const;
+  // Maps a point given in this pose's frame into the parent frame.
+  Eigen::Vector2d Transform(const Eigen::Vector2d& point) const;
+  Eigen::Vector2d Translation() const { return {x_m, y_m}; }
+  Pose2D Normalized() const { return {x_m, y_m, NormalizeAngle(yaw_rad)}; }
+};
+
+// Difference of two poses: a ⊖ b = b⁻¹ · a, the motion from b to a in b's frame.
+Pose2D Between(const Pose2D& from, const Pose2D& to);
+
+std::ostream& operator<<(std::ostream& os, const Pose2D& pose);
+
+}  // namespace scanloc

@@ -1,0 +1,20 @@
+#pragma once
+// Output files are written whole or not at all: to a temporary sibling, then renamed.
+
+#include <functional>
+#include <iosfwd>
+#include <string>
+
+namespace scanloc {
+
+// Calls `write` on a stream to `path`.tmp-XXXX and renames it over `path` when the stream is good;
+// throws std::runtime_error (and removes the temporary) otherwise.
+void WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+
+// Renames `temporary_path` over `path`, throwing std::runtime_error with both names on failure.
+void CommitTemporaryFile(const std::string& temporary_path, const std::string& path);
+
+// A unique temporary path beside `path`.
+std::string TemporaryPathFor(const std::string& path);
+
+}  // namespace scanloc

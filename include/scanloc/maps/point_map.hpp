@@ -1,0 +1,69 @@
+#pragma once
+// The point map: world points accumulated from localised scans (3.6) or sampled from a line map,
+// with a k-d tree that grows incrementally and a de-duplication grid so that the map grows with the
+// explored area rather than with the number of scans.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "scanloc/geometry/laser_scan.hpp"
+#include "scanloc/geometry/pose2d.hpp"
+
+namespace scanloc {
+
+struct PointMapOptions {
+  // De-duplication: a point is not inserted when its square cell of this side already holds one.
+  // 0 disables de-duplication. Metres.
+  double cell_size_m = 0.05;
+  // Upper bound of the spacing recorded with a point (the gap to its neighbours on the surface it
+  // samples); it bounds how much of the view one isolated point may occlude. Metres.
+  double max_point_spacing_m = 0.3;
+};
+
+class PointMap {
+ public:
+  explicit PointMap(PointMapOptions options = {});
+  ~PointMap();
+  PointMap(PointMap&&) noexcept;
+  PointMap& operator=(PointMap&&) noexcept;
+  PointMap(const PointMap&) = delete;
+  PointMap& operator=(const PointMap&) = delete;
+
+  // Inserts one point sampling a surface with the given local spacing; returns false when its cell
+  // is taken (the kept point then records the smaller of the two spacings).
+  bool Insert(const Eigen::Vector2d& point_world, double spacing_m);
+  // Inserts many points at once (one index update); returns how many were added.
+  std::size_t Insert(const std::vector<Eigen::Vector2d>& points_world,
+                     const std::vector<double>& spacings_m);
+  // (3.6) Inserts the valid beams of a scan taken from T_world_laser; each point's spacing is the
+  // distance to its nearest valid neighbouring beam (r·Δθ when it has none). Returns points added.
+  std::size_t InsertScan(const LaserScan& scan, const Pose2D& T_world_laser);
+
+  std::size_t size() const;
+  bool empty() const { return size() == 0; }
+  const Eigen::Vector2d& point(std::size_t i) const;
+  double spacing(std::size_t i) const;
+  const PointMapOptions& options() const { return options_; }
+
+  // Indices of points within radius_m of the centre, with squared distances (unsorted).
+  std::vector<std::pair<std::uint32_t, double>> RadiusSearch(const Eigen::Vector2d& centre,
+                                                             double radius_m) const;
+  // The k nearest points, nearest first, with squared distances.
+  std::vector<std::pair<std::uint32_t, double>> KNearest(const Eigen::Vector2d& centre,
+                                                         std::size_t k) const;
+
+ private:
+  struct Storage;
+  PointMapOptions options_;
+  std::unique_ptr<Storage> storage_;
+};
+
+// Builds a point map from a line map sampled every spacing_m (§3.2.2, vertices included).
+struct LineMap;
+PointMap PointMapFromLines(const LineMap& lines, double spacing_m = 0.0075,
+                           PointMapOptions options = {});
+
+}  // namespace scanloc

@@ -1,0 +1,156 @@
+#include "scanloc/simulation/simulated_scan.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "scanloc/maps/line_map.hpp"
+#include "scanloc/maps/point_map.hpp"
+
+namespace scanloc {
+namespace {
+
+SimulatedScan EmptySimulation(const ScanLayout& layout) {
+  const std::size_t beam_count = layout.beam_count;
+  SimulatedScan sim;
+  sim.layout = layout;
+  sim.ranges_m.assign(beam_count, SimulatedScan::kNoReturn);
+  sim.hit_source.assign(beam_count, HitSource::kNone);
+  sim.hit_index.assign(beam_count, -1);
+  return sim;
+}
+
+void Offer(SimulatedScan& sim, std::size_t beam, double range_m, HitSource source,
+           std::int32_t index) {
+  if (!(range_m < sim.layout.range_max_m) || range_m <= sim.layout.range_min_m) return;
+  if (sim.hit_source[beam] == HitSource::kNone || range_m < sim.ranges_m[beam]) {
+    sim.ranges_m[beam] = range_m;
+    sim.hit_source[beam] = source;
+    sim.hit_index[beam] = index;
+  }
+}
+
+// Calls visit(beam) for each beam whose bearing (laser frame) lies in [from, from + span], span in
+// [0, π]; bearings are compared modulo 2π so an interval across the ±π seam is handled.
+template <class Visit>
+void ForEachBeamInInterval(const ScanLayout& layout, std::size_t beam_count, double from_rad,
+                           double span_rad, Visit visit) {
+  const double inc = layout.angle_increment_rad;
+  const double start = NormalizeAngle(from_rad);
+  for (const double shift : {-2.0 * M_PI, 0.0, 2.0 * M_PI}) {
+    const double lo = start + shift - layout.angle_min_rad;
+    const double hi = lo + span_rad;
+    const double first = std::max(0.0, std::ceil(lo / inc - 1e-9));
+    const double last = std::min(static_cast<double>(beam_count) - 1.0, std::floor(hi / inc + 1e-9));
+    for (double k = first; k <= last; k += 1.0) visit(static_cast<std::size_t>(k));
+  }
+}
+
+// Range along the unit ray origin + t·u to segment [a, b]; negative when there is no hit.
+double RaySegmentRange(const Eigen::Vector2d& origin, const Eigen::Vector2d& u,
+                       const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d d = b - a;
+  const Eigen::Vector2d w = a - origin;
+  const double denom = u.x() * d.y() - u.y() * d.x();
+  const double length = d.norm();
+  if (std::abs(denom) <= 1e-12 * std::max(length, 1e-12)) {
+    // Seen edge-on: the beam runs along the segment's line; it meets the nearer vertex.
+    if (std::abs(w.x() * u.y() - w.y() * u.x()) > 1e-9) return -1.0;
+    const double ta = w.dot(u), tb = (b - origin).dot(u);
+    const double t = std::min(ta, tb) > 0.0 ? std::min(ta, tb) : -1.0;
+    return t;
+  }
+  const double t = (w.x() * d.y() - w.y() * d.x()) / denom;
+  const double s = (w.x() * u.y() - w.y() * u.x()) / denom;
+  const double tolerance = 1e-9 / std::max(length, 1e-12);
+  if (s < -tolerance || s > 1.0 + tolerance || t <= 0.0) return -1.0;
+  return t;
+}
+
+// (3.7) Offers map point i to the beams it covers as seen from T_world_laser.
+void OfferPoint(SimulatedScan& sim, const PointMap& map, const Pose2D& T_world_laser,
+                const PointSimulationOptions& options, std::uint32_t i) {
+  const ScanLayout& layout = sim.layout;
+  const Eigen::Vector2d delta = map.point(i) - T_world_laser.Translation();
+  const double range = delta.norm();  // (3.7) r_m
+  if (!(range < layout.range_max_m) || range <= layout.range_min_m) return;
+  const double bearing = std::atan2(delta.y(), delta.x()) - T_world_laser.yaw_rad;  // (3.7) b_m
+  // Half a step reaches the nearest beam, which is the chapter's binning; a wider footprint lets
+  // the point hide the beams its neighbourhood covers.
+  const double inc = layout.angle_increment_rad;
+  const double half_width = std::min(
+      M_PI / 2.0, std::max(0.5 * inc, 0.5 * options.footprint_factor * map.spacing(i) / range));
+  ForEachBeamInInterval(layout, sim.size(), bearing - half_width, 2.0 * half_width,
+                        [&](std::size_t beam) {
+                          Offer(sim, beam, range, HitSource::kPoint, static_cast<std::int32_t>(i));
+                        });
+}
+
+}  // namespace
+
+bool MapView::empty() const {
+  return (lines == nullptr || lines->empty()) && (points == nullptr || points->empty());
+}
+
+SimulatedScan SimulateFromLines(const LineMap& map, const ScanLayout& layout,
+                                const Pose2D& T_world_laser) {
+  SimulatedScan sim = EmptySimulation(layout);
+  const Eigen::Vector2d origin = T_world_laser.Translation();
+  for (std::size_t j = 0; j < map.segments.size(); ++j) {
+    const Segment& segment = map.segments[j];
+    const Eigen::Vector2d d1 = segment.a - origin, d2 = segment.b - origin;
+    if (d1.norm() < 1e-12 || d2.norm() < 1e-12) continue;  // the laser sits on a vertex
+    // (3.1) bearings of the two vertices, in the laser frame.
+    const double b1 = std::atan2(d1.y(), d1.x()) - T_world_laser.yaw_rad;
+    const double b2 = std::atan2(d2.y(), d2.x()) - T_world_laser.yaw_rad;
+    // The triangle of visibility spans the shorter arc between them (a segment not through the
+    // laser subtends less than π); its start may lie on either side of the ±π seam.
+    const double sweep = NormalizeAngle(b2 - b1);
+    const double from = sweep >= 0.0 ? b1 : b2;
+    ForEachBeamInInterval(layout, layout.beam_count, from, std::abs(sweep), [&](std::size_t beam) {
+      const double bearing = T_world_laser.yaw_rad + layout.Bearing(beam);
+      const Eigen::Vector2d u(std::cos(bearing), std::sin(bearing));
+      // Equivalent to the sine law (3.5), r(δ) = r1·sin α / sin(α + δ), evaluated per beam
+      // without accumulating δ.
+      const double range = RaySegmentRange(origin, u, segment.a, segment.b);
+      if (range > 0.0) Offer(sim, beam, range, HitSource::kSegment, static_cast<std::int32_t>(j));
+    });
+  }
+  return sim;
+}
+
+SimulatedScan SimulateFromPoints(const PointMap& map, const ScanLayout& layout,
+                                 const Pose2D& T_world_laser,
+                                 const PointSimulationOptions& options) {
+  SimulatedScan sim = EmptySimulation(layout);
+  for (const auto& [index, squared_distance] :
+       map.RadiusSearch(T_world_laser.Translation(), layout.range_max_m))
+    OfferPoint(sim, map, T_world_laser, options, index);
+  return sim;
+}
+
+SimulatedScan SimulateFromPointsBruteForce(const PointMap& map, const ScanLayout& layout,
+                                           const Pose2D& T_world_laser,
+                                           const PointSimulationOptions& options) {
+  SimulatedScan sim = EmptySimulation(layout);
+  for (std::size_t i = 0; i < map.size(); ++i)
+    OfferPoint(sim, map, T_world_laser, options, static_cast<std::uint32_t>(i));
+  return sim;
+}
+
+SimulatedScan Simulate(const MapView& map, const ScanLayout& layout, const Pose2D& T_world_laser,
+                       const PointSimulationOptions& options) {
+  const bool has_lines = map.lines != nullptr && !map.lines->empty();
+  const bool has_points = map.points != nullptr && !map.points->empty();
+  if (has_lines && !has_points) return SimulateFromLines(*map.lines, layout, T_world_laser);
+  if (has_points && !has_lines)
+    return SimulateFromPoints(*map.points, layout, T_world_laser, options);
+  if (!has_lines) return EmptySimulation(layout);
+  SimulatedScan sim = SimulateFromLines(*map.lines, layout, T_world_laser);
+  const SimulatedScan from_points = SimulateFromPoints(*map.points, layout, T_world_laser, options);
+  for (std::size_t k = 0; k < sim.size(); ++k)
+    if (from_points.IsValid(k))
+      Offer(sim, k, from_points.ranges_m[k], HitSource::kPoint, from_points.hit_index[k]);
+  return sim;
+}
+
+}  // namespace scanloc
