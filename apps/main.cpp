@@ -1,1 +1,23 @@
-int main() { return 0; }
+// scanloc: incremental 2D laser localisation and mapping with the Likelihood Test.
+
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"scanloc: 2D laser localisation and mapping with the Likelihood Test"};
+  app.require_subcommand(1);
+  scanloc::app::RegisterTestCommand(app);
+  scanloc::app::RegisterSimulateScanCommand(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::cerr << "scanloc: error: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}

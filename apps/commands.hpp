@@ -1,0 +1,11 @@
+#pragma once
+// Each subcommand registers itself on the scanloc application.
+
+#include <CLI/CLI.hpp>
+
+namespace scanloc::app {
+
+void RegisterTestCommand(CLI::App& app);
+void RegisterSimulateScanCommand(CLI::App& app);
+
+}  // namespace scanloc::app

@@ -1,0 +1,42 @@
+#include "scanloc/io/candidates_file.hpp"
+
+#include <fstream>
+#include <iomanip>
+
+#include "scanloc/io/atomic_file.hpp"
+#include "scanloc/io/parse_error.hpp"
+
+namespace scanloc {
+
+std::vector<Candidate> ReadCandidatesFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open candidates file " + path);
+  std::vector<Candidate> candidates;
+  std::string line;
+  for (std::size_t number = 1; std::getline(in, line); ++number) {
+    const auto fields = SplitFields(line);
+    if (fields.empty()) continue;
+    if (fields.size() != 3 && fields.size() != 4)
+      throw ParseError(path, number,
+                       "expected 'x y theta [label]' (metres, radians), got " +
+                           std::to_string(fields.size()) + " fields");
+    Candidate c;
+    c.T_world_robot = {ParseFiniteDouble(fields[0], path, number, "x in metres"),
+                       ParseFiniteDouble(fields[1], path, number, "y in metres"),
+                       ParseFiniteDouble(fields[2], path, number, "theta in radians")};
+    c.label = fields.size() == 4 ? fields[3] : "p" + std::to_string(candidates.size());
+    candidates.push_back(c);
+  }
+  return candidates;
+}
+
+void WriteCandidatesFile(const std::vector<Candidate>& candidates, const std::string& path) {
+  WriteFileAtomically(path, [&](std::ostream& out) {
+    out << "# x y theta label (robot posture: metres, radians)\n" << std::setprecision(10);
+    for (const auto& c : candidates)
+      out << c.T_world_robot.x_m << ' ' << c.T_world_robot.y_m << ' ' << c.T_world_robot.yaw_rad
+          << ' ' << c.label << '\n';
+  });
+}
+
+}  // namespace scanloc

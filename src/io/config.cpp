@@ -1,0 +1,148 @@
+#include "scanloc/io/config.hpp"
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <algorithm>
+#include <stdexcept>
+
+namespace scanloc {
+namespace {
+
+using nlohmann::json;
+
+// Reads the members of one JSON object into fields, refusing unknown keys.
+class Section {
+ public:
+  Section(const json& object, std::string path) : object_(object), path_(std::move(path)) {
+    if (!object_.is_object()) throw std::runtime_error(path_ + ": expected a JSON object");
+  }
+  template <class T>
+  Section& Field(const char* key, T& field) {
+    known_.push_back(key);
+    if (const auto it = object_.find(key); it != object_.end()) {
+      try {
+        field = it->template get<T>();
+      } catch (const json::exception&) {
+        throw std::runtime_error(path_ + "." + key + ": expected a " +
+                                 (std::is_same_v<T, int> ? "whole number" : "number"));
+      }
+    }
+    return *this;
+  }
+  Section Child(const char* key) {
+    known_.push_back(key);
+    const auto it = object_.find(key);
+    return Section(it != object_.end() ? *it : empty_, path_ + "." + key);
+  }
+  bool Has(const char* key) const { return object_.contains(key); }
+  void RefuseUnknown() const {
+    for (const auto& [key, value] : object_.items())
+      if (std::find(known_.begin(), known_.end(), key) == known_.end())
+        throw std::runtime_error(path_ + ": unknown key '" + key + "'");
+  }
+
+ private:
+  static inline const json empty_ = json::object();
+  const json& object_;
+  std::string path_;
+  std::vector<std::string> known_;
+};
+
+}  // namespace
+
+void Config::Validate() const {
+  scoring.test.Validate();
+  scoring.distance.Validate();
+  validation.Validate();
+  PointMap check(point_map);  // validates its options
+  if (!(line_sampling_m > 0.0)) throw std::invalid_argument("line_sampling_m must be positive");
+  if (!(scoring.simulation.footprint_factor >= 0.0))
+    throw std::invalid_argument("point_simulation.footprint_factor must be >= 0");
+}
+
+void ApplyJson(const json& root, Config& c) {
+  Section top(root, "config");
+  auto test = top.Child("likelihood_test");
+  test.Field("slot_count", c.scoring.test.slot_count)
+      .Field("slot_width_m", c.scoring.test.slot_width_m)
+      .Field("match_threshold_m", c.scoring.test.match_threshold_m)
+      .Field("last_slot_distance_m", c.scoring.test.last_slot_distance_m)
+      .RefuseUnknown();
+  auto distance = top.Child("likelihood_distance");
+  std::string kernel = ToString(c.scoring.distance.kernel);
+  distance.Field("kernel", kernel).Field("scale_m", c.scoring.distance.scale_m).RefuseUnknown();
+  try {
+    c.scoring.distance.kernel = ParseRobustKernel(kernel);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(std::string("config.likelihood_distance.kernel: ") + e.what());
+  }
+  top.Child("point_simulation")
+      .Field("footprint_factor", c.scoring.simulation.footprint_factor)
+      .RefuseUnknown();
+  top.Child("validation")
+      .Field("min_match_ratio", c.validation.min_match_ratio)
+      .Field("max_expect_value_m", c.validation.max_expect_value_m)
+      .Field("alpha_m", c.validation.alpha_m)
+      .Field("max_cost_ratio", c.validation.max_cost_ratio)
+      .Field("much_less_factor", c.validation.much_less_factor)
+      .RefuseUnknown();
+  top.Child("point_map")
+      .Field("cell_size_m", c.point_map.cell_size_m)
+      .Field("max_point_spacing_m", c.point_map.max_point_spacing_m)
+      .RefuseUnknown();
+  top.Field("line_sampling_m", c.line_sampling_m);
+  top.Child("mounting")
+      .Field("x_m", c.mounting.T_robot_laser.x_m)
+      .Field("y_m", c.mounting.T_robot_laser.y_m)
+      .Field("yaw_rad", c.mounting.T_robot_laser.yaw_rad)
+      .RefuseUnknown();
+  top.RefuseUnknown();
+}
+
+Config LoadConfig(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open config file " + path);
+  json root;
+  try {
+    root = json::parse(in);
+  } catch (const json::parse_error& e) {
+    throw std::runtime_error(path + ": not valid JSON: " + e.what());
+  }
+  Config config;
+  try {
+    ApplyJson(root, config);
+    config.Validate();
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
+  return config;
+}
+
+json ToJson(const Config& c) {
+  return {
+      {"likelihood_test",
+       {{"slot_count", c.scoring.test.slot_count},
+        {"slot_width_m", c.scoring.test.slot_width_m},
+        {"match_threshold_m", c.scoring.test.match_threshold_m},
+        {"last_slot_distance_m", c.scoring.test.last_slot_distance_m}}},
+      {"likelihood_distance",
+       {{"kernel", ToString(c.scoring.distance.kernel)}, {"scale_m", c.scoring.distance.scale_m}}},
+      {"point_simulation", {{"footprint_factor", c.scoring.simulation.footprint_factor}}},
+      {"validation",
+       {{"min_match_ratio", c.validation.min_match_ratio},
+        {"max_expect_value_m", c.validation.max_expect_value_m},
+        {"alpha_m", c.validation.alpha_m},
+        {"max_cost_ratio", c.validation.max_cost_ratio},
+        {"much_less_factor", c.validation.much_less_factor}}},
+      {"point_map",
+       {{"cell_size_m", c.point_map.cell_size_m},
+        {"max_point_spacing_m", c.point_map.max_point_spacing_m}}},
+      {"line_sampling_m", c.line_sampling_m},
+      {"mounting",
+       {{"x_m", c.mounting.T_robot_laser.x_m},
+        {"y_m", c.mounting.T_robot_laser.y_m},
+        {"yaw_rad", c.mounting.T_robot_laser.yaw_rad}}},
+  };
+}
+
+}  // namespace scanloc
