@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds, and runs every test. The public-log tests find the logs in
+# $SCANLOC_DATASETS (default ../shared/datasets) and skip with a message when they are absent.
+#   scripts/test.sh              Release build in build/
+#   scripts/test.sh --sanitize   AddressSanitizer + UBSan build in build-sanitize/
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+if [ "${1:-}" = "--sanitize" ]; then
+  export SCANLOC_BUILD_DIR=build-sanitize SCANLOC_BUILD_TYPE=RelWithDebInfo
+  bash scripts/build.sh -DSCANLOC_SANITIZE=ON
+else
+  bash scripts/build.sh
+fi
+ctest --test-dir "${SCANLOC_BUILD_DIR:-build}" --output-on-failure -j"$(nproc)"

@@ -1,0 +1,201 @@
+#include "scanloc/simulation/simulated_scan.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "scanloc/maps/line_map.hpp"
+#include "scanloc/maps/point_map.hpp"
+#include "test_support.hpp"
+
+namespace scanloc {
+namespace {
+
+// Closed form: the range to the walls of [0, w] × [0, h] from (x, y) along world angle φ.
+double RoomRange(double w, double h, double x, double y, double phi) {
+  const double c = std::cos(phi), s = std::sin(phi);
+  double r = std::numeric_limits<double>::infinity();
+  if (std::abs(c) > 1e-12) r = std::min(r, ((c > 0 ? w : 0.0) - x) / c);
+  if (std::abs(s) > 1e-12) r = std::min(r, ((s > 0 ? h : 0.0) - y) / s);
+  return r;
+}
+
+TEST(SimulateFromLines, CentreOfSquareRoomMatchesClosedForm) {
+  const LineMap room = testing::RectangleRoom(4.0, 4.0);
+  const ScanLayout layout = MakeLayout(2400, 2.0 * M_PI, 20.0);
+  const SimulatedScan sim = SimulateFromLines(room, layout, {2.0, 2.0, 0.0});
+  for (std::size_t k = 0; k < layout.beam_count; ++k) {
+    const double b = layout.Bearing(k);
+    ASSERT_TRUE(sim.IsValid(k)) << "beam " << k;
+    EXPECT_NEAR(sim.ranges_m[k], 2.0 / std::max(std::abs(std::cos(b)), std::abs(std::sin(b))),
+                1e-9)
+        << "beam " << k;
+    EXPECT_EQ(sim.hit_source[k], HitSource::kSegment);
+  }
+}
+
+TEST(SimulateFromLines, OffCentreRotatedPostureMatchesClosedForm) {
+  const LineMap room = testing::RectangleRoom(6.0, 4.0);
+  const ScanLayout layout = MakeLayout(720, 2.0 * M_PI, 20.0);
+  const Pose2D pose{1.3, 2.9, 2.7};
+  const SimulatedScan sim = SimulateFromLines(room, layout, pose);
+  for (std::size_t k = 0; k < layout.beam_count; ++k)
+    EXPECT_NEAR(sim.ranges_m[k], RoomRange(6.0, 4.0, 1.3, 2.9, pose.yaw_rad + layout.Bearing(k)),
+                1e-9)
+        << "beam " << k;
+}
+
+TEST(SimulateFromLines, NearerSegmentOccludesTheWallBehind) {
+  LineMap map = testing::RectangleRoom(4.0, 4.0);
+  map.segments.push_back({{3.0, 1.5}, {3.0, 2.5}});  // a board 1 m ahead of the laser
+  const ScanLayout layout = MakeLayout(360, 2.0 * M_PI, 20.0);
+  const SimulatedScan sim = SimulateFromLines(map, layout, {2.0, 2.0, 0.0});
+  const std::size_t ahead = 180;  // bearing 0
+  EXPECT_NEAR(sim.ranges_m[ahead], 1.0, 1e-9);
+  EXPECT_EQ(sim.hit_index[ahead], 4);
+  // Bearing 20°: passes beside the board (it subtends ±26.6°)? tan(20°) = 0.364 < 0.5 → hits it.
+  EXPECT_NEAR(sim.ranges_m[ahead + 20], 1.0 / std::cos(20.0 * M_PI / 180.0), 1e-9);
+  // Bearing 30° misses the board and reaches the east wall at x = 4.
+  EXPECT_NEAR(sim.ranges_m[ahead + 30], 2.0 / std::cos(30.0 * M_PI / 180.0), 1e-9);
+}
+
+TEST(SimulateFromLines, SegmentAcrossTheSeamIsSeenOnBothSides) {
+  LineMap map;
+  map.segments.push_back({{-1.0, 1.0}, {-1.0, -1.0}});  // behind the laser, across bearing ±π
+  const ScanLayout layout = MakeLayout(360, 2.0 * M_PI, 20.0);  // beam 0 at -π
+  const SimulatedScan sim = SimulateFromLines(map, layout, {0.0, 0.0, 0.0});
+  int hits = 0;
+  for (std::size_t k = 0; k < layout.beam_count; ++k) {
+    const double b = layout.Bearing(k);
+    const bool behind = std::abs(NormalizeAngle(b - M_PI)) <= M_PI / 4 + 1e-9;
+    EXPECT_EQ(sim.IsValid(k), behind) << "beam " << k;
+    if (behind) {
+      EXPECT_NEAR(sim.ranges_m[k], 1.0 / std::abs(std::cos(b)), 1e-9);
+      ++hits;
+    }
+  }
+  EXPECT_EQ(hits, 91);  // -135°..-180° and 135°..179°: 46 + 45 beams
+}
+
+TEST(SimulateFromLines, SeamCrossingWorksWhenTheLaserIsRotated) {
+  LineMap map;
+  map.segments.push_back({{1.0, -0.5}, {1.0, 0.5}});  // ahead in the world
+  const ScanLayout layout = MakeLayout(360, 2.0 * M_PI, 20.0);
+  const SimulatedScan sim = SimulateFromLines(map, layout, {0.0, 0.0, M_PI});  // facing away
+  EXPECT_NEAR(sim.ranges_m[0], 1.0, 1e-9);  // beam 0 at -π in the laser frame points to +x
+  EXPECT_TRUE(sim.IsValid(359));
+}
+
+TEST(SimulateFromLines, EdgeOnSegmentReturnsItsNearerVertex) {
+  LineMap map;
+  map.segments.push_back({{2.0, 0.0}, {1.0, 0.0}});  // along the beam at bearing 0
+  const ScanLayout layout = MakeLayout(361, M_PI, 20.0);
+  const SimulatedScan sim = SimulateFromLines(map, layout, {0.0, 0.0, 0.0});
+  EXPECT_NEAR(sim.ranges_m[180], 1.0, 1e-9);
+  int hits = 0;
+  for (std::size_t k = 0; k < layout.beam_count; ++k) hits += sim.IsValid(k);
+  EXPECT_EQ(hits, 1);
+}
+
+TEST(SimulateFromLines, SegmentPartlyOutsideTheAngularLimitsFillsOnlyBeamsInside) {
+  LineMap map;
+  map.segments.push_back({{-1.0, 1.0}, {1.0, 1.0}});  // spans bearings 45°..135°
+  const ScanLayout layout = MakeLayout(181, M_PI, 20.0);  // -90°..90°, 1° steps
+  const SimulatedScan sim = SimulateFromLines(map, layout, {0.0, 0.0, 0.0});
+  for (std::size_t k = 0; k < layout.beam_count; ++k) {
+    const double deg = -90.0 + k;
+    EXPECT_EQ(sim.IsValid(k), deg >= 45.0 - 1e-9) << deg;
+    if (sim.IsValid(k)) EXPECT_NEAR(sim.ranges_m[k], 1.0 / std::sin(deg * M_PI / 180.0), 1e-9);
+  }
+}
+
+TEST(SimulateFromLines, HitsBeyondMaximumRangeAreNoReturn) {
+  const LineMap room = testing::RectangleRoom(40.0, 40.0);
+  const ScanLayout layout = MakeLayout(360, 2.0 * M_PI, 20.0);
+  const SimulatedScan sim = SimulateFromLines(room, layout, {5.0, 20.0, 0.0});
+  EXPECT_NEAR(sim.ranges_m[0], 5.0, 1e-9);                        // west wall, bearing -π
+  EXPECT_FALSE(sim.IsValid(180));                                 // east wall 35 m away
+  EXPECT_DOUBLE_EQ(sim.ranges_m[180], SimulatedScan::kNoReturn);  // the trials' -1.0
+}
+
+TEST(SimulateFromPoints, SampledLineMapAgreesWithTheLineMap) {
+  LineMap map = testing::RectangleRoom(6.0, 5.0);
+  map.segments.push_back({{4.0, 3.5}, {5.0, 3.5}});
+  const PointMap points = PointMapFromLines(map, 0.0075, {0.0, 0.3});
+  const ScanLayout layout = MakeLayout(2400, 2.0 * M_PI, 20.0);
+  const Pose2D pose{2.2, 1.9, 0.4};
+  const SimulatedScan from_lines = SimulateFromLines(map, layout, pose);
+  const SimulatedScan from_points = SimulateFromPoints(points, layout, pose);
+  std::vector<double> errors;
+  for (std::size_t k = 0; k < layout.beam_count; ++k) {
+    ASSERT_EQ(from_lines.IsValid(k), from_points.IsValid(k)) << "beam " << k;
+    errors.push_back(std::abs(from_lines.ranges_m[k] - from_points.ranges_m[k]));
+  }
+  std::sort(errors.begin(), errors.end());
+  // Points 7.5 mm apart seen at up to ~4 m: the nearest sample lies within a few millimetres of
+  // the beam's hit, except at grazing incidence and behind the board's ends.
+  EXPECT_LT(errors[errors.size() / 2], 0.005);
+  EXPECT_LT(errors[errors.size() * 95 / 100], 0.02);
+}
+
+TEST(SimulateFromPoints, SparseNearPointsOccludeDenseFarPoints) {
+  PointMap map(PointMapOptions{0.0, 1.0});
+  // A near wall at x = 2 sampled every 0.2 m, a far wall at x = 6 sampled every 1 cm.
+  for (double y = -1.0; y <= 1.0 + 1e-9; y += 0.2) map.Insert({2.0, y}, 0.2);
+  for (double y = -4.0; y <= 4.0 + 1e-9; y += 0.01) map.Insert({6.0, y}, 0.01);
+  const ScanLayout layout = MakeLayout(2400, 2.0 * M_PI, 20.0);
+  const Pose2D pose{0.0, 0.0, 0.0};
+  auto count_far_within_near_wall = [&](const SimulatedScan& sim) {
+    int far = 0;
+    for (std::size_t k = 0; k < layout.beam_count; ++k) {
+      const double b = layout.Bearing(k);
+      if (std::abs(b) < std::atan(0.9 / 2.0) && sim.IsValid(k) && sim.ranges_m[k] > 3.0) ++far;
+    }
+    return far;
+  };
+  const SimulatedScan chapter = SimulateFromPoints(map, layout, pose, {0.0});
+  const SimulatedScan occluding = SimulateFromPoints(map, layout, pose);
+  EXPECT_GT(count_far_within_near_wall(chapter), 100);  // (3.7) lets the far wall show through
+  EXPECT_EQ(count_far_within_near_wall(occluding), 0);
+}
+
+TEST(SimulateFromPoints, IndexedEqualsBruteForceOnRandomMaps) {
+  std::mt19937 rng(2024);
+  std::uniform_real_distribution<double> coordinate(-30.0, 30.0), yaw(-M_PI, M_PI);
+  const ScanLayout layout = MakeLayout(1000, 2.0 * M_PI, 20.0);
+  for (const int size : {1, 100, 5000, 50000}) {
+    PointMap map(PointMapOptions{0.0, 0.3});
+    std::vector<Eigen::Vector2d> points;
+    for (int i = 0; i < size; ++i) points.emplace_back(coordinate(rng), coordinate(rng));
+    map.Insert(points, std::vector<double>(points.size(), 0.05));
+    for (int trial = 0; trial < 5; ++trial) {
+      const Pose2D pose{coordinate(rng) / 2, coordinate(rng) / 2, yaw(rng)};
+      const SimulatedScan a = SimulateFromPoints(map, layout, pose);
+      const SimulatedScan b = SimulateFromPointsBruteForce(map, layout, pose);
+      for (std::size_t k = 0; k < layout.beam_count; ++k) {
+        ASSERT_EQ(a.IsValid(k), b.IsValid(k)) << "size " << size << " beam " << k;
+        if (a.IsValid(k)) ASSERT_DOUBLE_EQ(a.ranges_m[k], b.ranges_m[k]);
+      }
+    }
+  }
+}
+
+TEST(Simulate, BothMapsKeepTheNearerHitPerBeam) {
+  const LineMap room = testing::RectangleRoom(4.0, 4.0);
+  PointMap points(PointMapOptions{0.0, 0.3});
+  points.Insert({3.0, 2.0}, 0.05);  // a post 1 m ahead, not in the line map
+  const ScanLayout layout = MakeLayout(360, 2.0 * M_PI, 20.0);
+  const SimulatedScan sim = Simulate(MapView{&room, &points}, layout, {2.0, 2.0, 0.0});
+  EXPECT_NEAR(sim.ranges_m[180], 1.0, 1e-9);
+  EXPECT_EQ(sim.hit_source[180], HitSource::kPoint);
+  EXPECT_NEAR(sim.ranges_m[0], 2.0, 1e-9);
+  EXPECT_EQ(sim.hit_source[0], HitSource::kSegment);
+  const SimulatedScan nothing = Simulate(MapView{}, layout, {2.0, 2.0, 0.0});
+  EXPECT_EQ(std::count(nothing.hit_source.begin(), nothing.hit_source.end(), HitSource::kNone),
+            360);
+}
+
+}  // namespace
+}  // namespace scanloc
