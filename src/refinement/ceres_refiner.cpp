@@ -1,0 +1,293 @@
+#include "scanloc/refinement/ceres_refiner.hpp"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "scanloc/maps/line_map.hpp"
+#include "scanloc/maps/point_map.hpp"
+
+namespace scanloc {
+namespace {
+
+// The local line of the surface a beam hits: n·q = offset, n a unit normal.
+struct SurfaceLine {
+  Eigen::Vector2d normal;
+  double offset = 0.0;
+};
+
+// One beam's residual against its surface line, for the laser posture (x, y, θ):
+//   φ = θ + bearing, u = (cos φ, sin φ), p = (x, y)
+//   t = (offset − n·p) / (n·u)                the range along the beam to the line (sine law)
+//   kNone/kGate:  residual = r − t
+//   kCosine:      residual = (r − t)·(n·u) = n·(p + r·u) − offset, the measured point's signed
+//                 distance to the line, which stays finite at grazing incidence.
+class BeamResidual {
+ public:
+  BeamResidual(double bearing_rad, double range_m, const SurfaceLine& line, bool cosine)
+      : bearing_rad_(bearing_rad), range_m_(range_m), line_(line), cosine_(cosine) {}
+
+  template <typename T>
+  bool operator()(const T* const pose, T* residual) const {
+    const T phi = pose[2] + T(bearing_rad_);
+    const T nu = T(line_.normal.x()) * cos(phi) + T(line_.normal.y()) * sin(phi);
+    const T np = T(line_.normal.x()) * pose[0] + T(line_.normal.y()) * pose[1];
+    if (cosine_) {
+      residual[0] = np + T(range_m_) * nu - T(line_.offset);
+    } else {
+      residual[0] = T(range_m_) - (T(line_.offset) - np) / nu;
+    }
+    return true;
+  }
+
+  static ceres::CostFunction* Create(double bearing_rad, double range_m, const SurfaceLine& line,
+                                     bool cosine) {
+    return new ceres::AutoDiffCostFunction<BeamResidual, 1, 3>(
+        new BeamResidual(bearing_rad, range_m, line, cosine));
+  }
+
+ private:
+  double bearing_rad_;
+  double range_m_;
+  SurfaceLine line_;
+  bool cosine_;
+};
+
+ceres::LossFunction* MakeLoss(const LikelihoodDistanceOptions& distance) {
+  // Ceres' losses act on s = residual²; with a = c they are the Likelihood Distance's kernels
+  // (up to a constant factor).
+  const double c = distance.scale_m;
+  switch (distance.kernel) {
+    case RobustKernel::kCauchy: return new ceres::CauchyLoss(c);
+    case RobustKernel::kHuber: return new ceres::HuberLoss(c);
+    case RobustKernel::kTukey: return new ceres::TukeyLoss(c);
+  }
+  return nullptr;
+}
+
+// A line through the k nearest map points of the hit, if they are close and collinear enough.
+bool FitPointLine(const PointMap& points, const Eigen::Vector2d& hit,
+                  const CeresRefinerOptions& options, SurfaceLine& line) {
+  const auto neighbours = points.KNearest(hit, static_cast<std::size_t>(options.line_fit_neighbours));
+  if (neighbours.size() < 2) return false;
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  std::size_t used = 0;
+  const double radius2 = options.line_fit_radius_m * options.line_fit_radius_m;
+  for (const auto& [index, squared_distance] : neighbours)
+    if (squared_distance <= radius2) {
+      centroid += points.point(index);
+      ++used;
+    }
+  if (used < 2) return false;
+  centroid /= static_cast<double>(used);
+  Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
+  for (const auto& [index, squared_distance] : neighbours)
+    if (squared_distance <= radius2) {
+      const Eigen::Vector2d d = points.point(index) - centroid;
+      spread += d * d.transpose();
+    }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(spread);
+  const double largest = eigen.eigenvalues()(1);
+  if (!(largest > 0.0)) return false;
+  if (std::sqrt(std::max(0.0, eigen.eigenvalues()(0)) / largest) > options.max_line_thickness)
+    return false;
+  line.normal = eigen.eigenvectors().col(0).normalized();
+  line.offset = line.normal.dot(centroid);
+  return true;
+}
+
+bool SurfaceLineOfBeam(const MapView& map, const SimulatedScan& sim, std::size_t beam,
+                       const Eigen::Vector2d& hit, const CeresRefinerOptions& options,
+                       SurfaceLine& line) {
+  if (sim.hit_source[beam] == HitSource::kSegment) {
+    const Segment& s = map.lines->segments[sim.hit_index[beam]];
+    const Eigen::Vector2d d = s.b - s.a;
+    if (d.norm() < 1e-9) return false;
+    line.normal = Eigen::Vector2d(-d.y(), d.x()).normalized();
+    line.offset = line.normal.dot(s.a);
+    return true;
+  }
+  return FitPointLine(*map.points, hit, options, line);
+}
+
+struct BuiltProblem {
+  std::unique_ptr<ceres::Problem> problem;
+  int residual_count = 0;
+  std::vector<double> ranges_used_m;
+};
+
+BuiltProblem BuildProblem(const MapView& map, const LaserScan& scan, const Pose2D& pose,
+                          const SimulatedScan& sim, const ScoringOptions& scoring,
+                          const CeresRefinerOptions& options, double* parameters) {
+  BuiltProblem built;
+  ceres::Problem::Options problem_options;
+  problem_options.loss_function_ownership = ceres::TAKE_OWNERSHIP;
+  built.problem = std::make_unique<ceres::Problem>(problem_options);
+  const double max_residual =
+      options.max_residual_m > 0.0 ? options.max_residual_m : scoring.test.match_threshold_m;
+  const double min_cos = std::cos(options.max_incidence_rad);
+  const bool cosine = options.incidence == IncidenceWeighting::kCosine;
+  for (std::size_t k = 0; k < scan.size(); ++k) {
+    if (!scan.IsValid(k) || !sim.IsValid(k)) continue;
+    if (std::abs(scan.ranges_m[k] - sim.ranges_m[k]) > max_residual) continue;
+    const double phi = pose.yaw_rad + scan.layout.Bearing(k);
+    const Eigen::Vector2d u(std::cos(phi), std::sin(phi));
+    const Eigen::Vector2d hit = pose.Translation() + sim.ranges_m[k] * u;
+    SurfaceLine line;
+    if (!SurfaceLineOfBeam(map, sim, k, hit, options, line)) continue;
+    const double cos_incidence = std::abs(line.normal.dot(u));
+    // A plain range residual is undefined along the line; even the cosine form carries no
+    // information from beams that slide along their surface.
+    if (!cosine && cos_incidence < min_cos) continue;
+    if (cosine && cos_incidence < 1e-3) continue;
+    built.problem->AddResidualBlock(
+        BeamResidual::Create(scan.layout.Bearing(k), scan.ranges_m[k], line, cosine),
+        MakeLoss(scoring.distance), parameters);
+    built.ranges_used_m.push_back(scan.ranges_m[k]);
+    ++built.residual_count;
+  }
+  return built;
+}
+
+// Covariance σ²·(JᵀJ)⁻¹ and a degeneracy verdict from the information matrix JᵀJ at the solution.
+void EstimateUncertainty(BuiltProblem& built, const CeresRefinerOptions& options,
+                         RefinementResult& result) {
+  if (built.residual_count < 4) {
+    result.degenerate = true;
+    result.degeneracy = "too few beams constrain the posture (" +
+                        std::to_string(built.residual_count) + ")";
+    return;
+  }
+  double cost = 0.0;
+  ceres::CRSMatrix jacobian;
+  ceres::Problem::EvaluateOptions evaluate;
+  built.problem->Evaluate(evaluate, &cost, nullptr, nullptr, &jacobian);
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+  for (int row = 0; row < jacobian.num_rows; ++row) {
+    Eigen::Vector3d j = Eigen::Vector3d::Zero();
+    for (int i = jacobian.rows[row]; i < jacobian.rows[row + 1]; ++i)
+      j(jacobian.cols[i]) = jacobian.values[i];
+    information += j * j.transpose();
+  }
+  // Compare translation and rotation in one unit: a turn δθ moves points at the median range by
+  // median·δθ metres.
+  std::vector<double>& ranges = built.ranges_used_m;
+  std::nth_element(ranges.begin(), ranges.begin() + ranges.size() / 2, ranges.end());
+  const double lever_m = std::max(0.1, ranges[ranges.size() / 2]);
+  const Eigen::Vector3d scale(1.0, 1.0, 1.0 / lever_m);
+  const Eigen::Matrix3d scaled = scale.asDiagonal() * information * scale.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scaled);
+  const double weakest = eigen.eigenvalues()(0), strongest = eigen.eigenvalues()(2);
+  if (!(strongest > 0.0) || weakest < options.degeneracy_ratio * strongest) {
+    result.degenerate = true;
+    const Eigen::Vector3d v = eigen.eigenvectors().col(0);
+    char text[160];
+    if (v.head<2>().norm() >= std::abs(v(2)))
+      std::snprintf(text, sizeof text,
+                    "translation along (%.2f, %.2f) in the world is poorly constrained "
+                    "(information ratio %.2g)",
+                    v(0) / v.head<2>().norm(), v(1) / v.head<2>().norm(),
+                    strongest > 0.0 ? weakest / strongest : 0.0);
+    else
+      std::snprintf(text, sizeof text, "rotation is poorly constrained (information ratio %.2g)",
+                    strongest > 0.0 ? weakest / strongest : 0.0);
+    result.degeneracy = text;
+  }
+  const double sigma2 = 2.0 * cost / std::max(1, built.residual_count - 3);
+  const Eigen::FullPivLU<Eigen::Matrix3d> lu(information);
+  if (lu.isInvertible()) {
+    result.covariance = sigma2 * lu.inverse();
+    result.has_covariance = true;
+  }
+}
+
+}  // namespace
+
+const char* ToString(IncidenceWeighting weighting) {
+  switch (weighting) {
+    case IncidenceWeighting::kNone: return "none";
+    case IncidenceWeighting::kCosine: return "cosine";
+    case IncidenceWeighting::kGate: return "gate";
+  }
+  return "?";
+}
+
+IncidenceWeighting ParseIncidenceWeighting(const std::string& name) {
+  if (name == "none") return IncidenceWeighting::kNone;
+  if (name == "cosine") return IncidenceWeighting::kCosine;
+  if (name == "gate") return IncidenceWeighting::kGate;
+  throw std::invalid_argument("unknown incidence weighting '" + name +
+                              "' (expected none, cosine or gate)");
+}
+
+void CeresRefinerOptions::Validate() const {
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("CeresRefinerOptions: ") + what);
+  };
+  require(max_outer_iterations >= 1, "max_outer_iterations must be >= 1");
+  require(max_solver_iterations >= 1, "max_solver_iterations must be >= 1");
+  require(translation_tolerance_m > 0.0 && rotation_tolerance_rad > 0.0,
+          "tolerances must be positive");
+  require(max_incidence_rad > 0.0 && max_incidence_rad < M_PI / 2,
+          "max_incidence_rad must be in (0, π/2)");
+  require(std::isfinite(max_residual_m), "max_residual_m must be finite");
+  require(line_fit_neighbours >= 2, "line_fit_neighbours must be >= 2");
+  require(line_fit_radius_m > 0.0, "line_fit_radius_m must be positive");
+  require(max_line_thickness > 0.0 && max_line_thickness <= 1.0,
+          "max_line_thickness must be in (0, 1]");
+  require(degeneracy_ratio >= 0.0 && degeneracy_ratio < 1.0, "degeneracy_ratio must be in [0, 1)");
+}
+
+RefinementResult RefineCeres(const MapView& map, const LaserScan& scan,
+                             const Pose2D& T_world_laser_initial, const ScoringOptions& scoring,
+                             const CeresRefinerOptions& options) {
+  options.Validate();
+  scan.CheckConsistent();
+  const auto start = std::chrono::steady_clock::now();
+  RefinementResult result;
+  PostureScore score = ScorePosture(map, scan, T_world_laser_initial, scoring);
+  result.test_before = score.test;
+  result.distance_before = score.distance;
+  Pose2D pose = T_world_laser_initial;
+  BuiltProblem built;
+  for (int outer = 0; outer < options.max_outer_iterations; ++outer) {
+    double parameters[3] = {pose.x_m, pose.y_m, pose.yaw_rad};
+    built = BuildProblem(map, scan, pose, score.simulated, scoring, options, parameters);
+    result.iterations = outer + 1;
+    if (built.residual_count < 3) break;
+    ceres::Solver::Options solver_options;
+    solver_options.linear_solver_type = ceres::DENSE_QR;
+    solver_options.max_num_iterations = options.max_solver_iterations;
+    solver_options.num_threads = 1;
+    solver_options.logging_type = ceres::SILENT;
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver_options, built.problem.get(), &summary);
+    const Pose2D next{parameters[0], parameters[1], NormalizeAngle(parameters[2])};
+    const Pose2D step = Between(pose, next);
+    pose = next;
+    score = ScorePosture(map, scan, pose, scoring);
+    if (std::hypot(step.x_m, step.y_m) < options.translation_tolerance_m &&
+        std::abs(step.yaw_rad) < options.rotation_tolerance_rad) {
+      result.converged = true;
+      break;
+    }
+  }
+  result.T_world_laser = pose;
+  result.test_after = score.test;
+  result.distance_after = score.distance;
+  // The uncertainty of the final posture, with the correspondences it was found with.
+  double parameters[3] = {pose.x_m, pose.y_m, pose.yaw_rad};
+  built = BuildProblem(map, scan, pose, score.simulated, scoring, options, parameters);
+  EstimateUncertainty(built, options, result);
+  result.time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace scanloc

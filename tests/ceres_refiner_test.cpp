@@ -1,0 +1,184 @@
+#include "scanloc/refinement/ceres_refiner.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "scanloc/maps/line_map.hpp"
+#include "scanloc/maps/point_map.hpp"
+#include "scanloc/simulation/laser_simulator.hpp"
+#include "test_support.hpp"
+
+namespace scanloc {
+namespace {
+
+// The chapter's classroom: a 6.3 m × 7 m room with an L-shaped board in one corner.
+LineMap Classroom() {
+  LineMap map = testing::RectangleRoom(6.3, 7.0);
+  map.segments.push_back({{5.4, 6.0}, {6.0, 6.0}});
+  map.segments.push_back({{6.0, 6.0}, {6.0, 6.6}});
+  return map;
+}
+
+LaserScan Observe(const LineMap& world, const Pose2D& pose, double noise_m, unsigned seed) {
+  LaserSimulatorOptions laser;
+  laser.beam_count = 720;
+  laser.range_noise_m = noise_m;
+  laser.range_noise_per_m = 0.0;
+  std::mt19937 rng(seed);
+  return SimulateLaser(world, pose, laser, rng);
+}
+
+std::string Describe(const RefinementResult& r) {
+  return "pose " + std::to_string(r.T_world_laser.x_m) + " " + std::to_string(r.T_world_laser.y_m) +
+         " " + std::to_string(r.T_world_laser.yaw_rad) + ", iterations " +
+         std::to_string(r.iterations) + ", converged " + std::to_string(r.converged) +
+         ", EV before/after " + std::to_string(r.test_before.expect_value_m) + "/" +
+         std::to_string(r.test_after.expect_value_m);
+}
+
+// Offsets up to 0.3 m and 0.1 rad, drawn with a fixed seed.
+std::vector<Pose2D> Offsets(unsigned seed, int count) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> t(-0.3, 0.3), r(-0.1, 0.1);
+  std::vector<Pose2D> offsets;
+  for (int i = 0; i < count; ++i) offsets.push_back({t(rng), t(rng), r(rng)});
+  offsets.push_back({0.3, -0.3, 0.1});
+  return offsets;
+}
+
+TEST(RefineCeres, RecoversTruePostureFromOffsetsWithin5mmAnd2mradNoiseFree) {
+  const LineMap map = Classroom();
+  const Pose2D truth{2.2, 3.1, 0.4};
+  const LaserScan scan = Observe(map, truth, 0.0, 1);
+  for (const Pose2D& offset : Offsets(11, 12)) {
+    const Pose2D start = truth * offset;
+    const RefinementResult r = RefineCeres(MapView{&map, nullptr}, scan, start, ScoringOptions{});
+    const Pose2D error = Between(truth, r.T_world_laser);
+    EXPECT_LT(std::hypot(error.x_m, error.y_m), 0.005) << Describe(r);
+    EXPECT_LT(std::abs(error.yaw_rad), 0.002) << Describe(r);
+    EXPECT_TRUE(r.converged) << Describe(r);
+    EXPECT_LE(r.test_after.expect_value_m, r.test_before.expect_value_m) << Describe(r);
+    EXPECT_FALSE(r.degenerate) << r.degeneracy;
+  }
+}
+
+TEST(RefineCeres, RecoversTruePostureWithinTheNoiseLevelWith2cmRangeNoise) {
+  const LineMap map = Classroom();
+  const Pose2D truth{4.1, 2.0, -2.0};
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    const LaserScan scan = Observe(map, truth, 0.02, seed);
+    for (const Pose2D& offset : Offsets(100 + seed, 4)) {
+      const RefinementResult r =
+          RefineCeres(MapView{&map, nullptr}, scan, truth * offset, ScoringOptions{});
+      const Pose2D error = Between(truth, r.T_world_laser);
+      EXPECT_LT(std::hypot(error.x_m, error.y_m), 0.02) << Describe(r);
+      EXPECT_LT(std::abs(error.yaw_rad), 0.005) << Describe(r);
+      EXPECT_LE(r.test_after.expect_value_m, r.test_before.expect_value_m) << Describe(r);
+      ASSERT_TRUE(r.has_covariance);
+      // The estimated standard deviation is of the order of the actual error (2 cm noise, 720
+      // beams: a few millimetres).
+      EXPECT_LT(std::sqrt(r.covariance(0, 0)), 0.01);
+      EXPECT_GT(std::sqrt(r.covariance(0, 0)), 1e-4);
+    }
+  }
+}
+
+TEST(RefineCeres, ThirtyPercentOfBeamsOnClutterDoNotPullThePostureOff) {
+  const LineMap map = Classroom();
+  LineMap world = map;
+  // Boxes and people near the laser that are not in the map, shadowing ~30 % of the beams.
+  world.segments.push_back({{2.9, 2.4}, {3.5, 2.4}});
+  world.segments.push_back({{3.5, 2.4}, {3.5, 3.0}});
+  world.segments.push_back({{1.6, 3.4}, {1.6, 4.3}});
+  world.segments.push_back({{2.0, 4.6}, {2.8, 4.6}});
+  const Pose2D truth{2.4, 3.3, 0.2};
+  const LaserScan scan = Observe(world, truth, 0.01, 5);
+  const SimulatedScan clean = SimulateFromLines(map, scan.layout, truth);
+  int cluttered = 0;
+  for (std::size_t k = 0; k < scan.size(); ++k)
+    cluttered += scan.IsValid(k) && std::abs(scan.ranges_m[k] - clean.ranges_m[k]) > 0.1;
+  ASSERT_GT(cluttered, 0.28 * scan.size()) << "the clutter must hide about 30 % of the beams";
+  for (const Pose2D& offset : Offsets(21, 6)) {
+    const RefinementResult r =
+        RefineCeres(MapView{&map, nullptr}, scan, truth * offset, ScoringOptions{});
+    const Pose2D error = Between(truth, r.T_world_laser);
+    EXPECT_LT(std::hypot(error.x_m, error.y_m), 0.01) << Describe(r);
+    EXPECT_LT(std::abs(error.yaw_rad), 0.003) << Describe(r);
+  }
+}
+
+TEST(RefineCeres, WorksOnAPointMapSampledFromTheLines) {
+  const LineMap lines = Classroom();
+  const PointMap points = PointMapFromLines(lines, 0.0075);
+  const Pose2D truth{3.0, 4.0, 1.0};
+  const LaserScan scan = Observe(lines, truth, 0.0, 3);
+  for (const Pose2D& offset : Offsets(31, 6)) {
+    const RefinementResult r =
+        RefineCeres(MapView{nullptr, &points}, scan, truth * offset, ScoringOptions{});
+    const Pose2D error = Between(truth, r.T_world_laser);
+    // The map's points are 5 cm apart after de-duplication: the local lines carry that.
+    EXPECT_LT(std::hypot(error.x_m, error.y_m), 0.01) << Describe(r);
+    EXPECT_LT(std::abs(error.yaw_rad), 0.003) << Describe(r);
+  }
+}
+
+TEST(RefineCeres, LongCorridorIsFlaggedDegenerateAlongItsAxis) {
+  LineMap corridor;
+  corridor.segments = {{{-100.0, -1.0}, {100.0, -1.0}}, {{-100.0, 1.0}, {100.0, 1.0}}};
+  const Pose2D truth{0.0, 0.2, 0.05};
+  const LaserScan scan = Observe(corridor, truth, 0.01, 9);
+  const RefinementResult r =
+      RefineCeres(MapView{&corridor, nullptr}, scan, {0.1, 0.25, 0.0}, ScoringOptions{});
+  EXPECT_TRUE(r.degenerate);
+  EXPECT_NE(r.degeneracy.find("translation along (1.00, 0.00)"), std::string::npos)
+      << r.degeneracy;
+  // Across the corridor and in heading the posture is still recovered.
+  EXPECT_NEAR(r.T_world_laser.y_m, 0.2, 0.01);
+  EXPECT_NEAR(r.T_world_laser.yaw_rad, 0.05, 0.005);
+}
+
+TEST(RefineCeres, MirrorCandidateStaysAtTheMirrorAndScoresWorse) {
+  const LineMap map = Classroom();
+  const Pose2D truth{1.126, 3.112, 0.0463};
+  const LaserScan scan = Observe(map, truth, 0.02, 4);
+  // The posture symmetric about the room's centre, 5 cm and 0.02 rad off.
+  const Pose2D mirror{6.3 - 1.126 + 0.05, 7.0 - 3.112 - 0.03, NormalizeAngle(0.0463 + M_PI + 0.02)};
+  const RefinementResult right = RefineCeres(MapView{&map, nullptr}, scan, truth * Pose2D{0.05, 0.0, 0.01}, ScoringOptions{});
+  const RefinementResult wrong = RefineCeres(MapView{&map, nullptr}, scan, mirror, ScoringOptions{});
+  EXPECT_GT(std::hypot(wrong.T_world_laser.x_m - truth.x_m, wrong.T_world_laser.y_m - truth.y_m),
+            3.0)
+      << "the mirror candidate must not jump to the true posture";
+  EXPECT_LT(wrong.test_after.match_pairs, right.test_after.match_pairs);
+  EXPECT_GT(wrong.test_after.expect_value_m, right.test_after.expect_value_m);
+}
+
+TEST(RefineCeres, EmptyMapAndAllInvalidScanAreReportedNotCrashed) {
+  const LineMap empty;
+  const LineMap map = Classroom();
+  const LaserScan scan = Observe(map, {2.0, 2.0, 0.0}, 0.0, 1);
+  const RefinementResult on_empty =
+      RefineCeres(MapView{&empty, nullptr}, scan, {2.0, 2.0, 0.0}, ScoringOptions{});
+  EXPECT_FALSE(on_empty.converged);
+  EXPECT_TRUE(on_empty.degenerate);
+  EXPECT_EQ(on_empty.test_after.valid_pairs, 0);
+  LaserScan blind = scan;
+  std::fill(blind.ranges_m.begin(), blind.ranges_m.end(), -1.0);
+  const RefinementResult on_blind =
+      RefineCeres(MapView{&map, nullptr}, blind, {2.0, 2.0, 0.0}, ScoringOptions{});
+  EXPECT_FALSE(on_blind.converged);
+  EXPECT_TRUE(on_blind.degenerate);
+}
+
+TEST(CeresRefinerOptions, AbsurdValuesAreRefused) {
+  CeresRefinerOptions options;
+  options.max_outer_iterations = 0;
+  EXPECT_THROW(options.Validate(), std::invalid_argument);
+  options = {};
+  options.max_incidence_rad = 2.0;
+  EXPECT_THROW(options.Validate(), std::invalid_argument);
+  EXPECT_THROW(ParseIncidenceWeighting("sine"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace scanloc
