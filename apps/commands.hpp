@@ -7,5 +7,6 @@ namespace scanloc::app {
 
 void RegisterTestCommand(CLI::App& app);
 void RegisterSimulateScanCommand(CLI::App& app);
+void RegisterRefineCommand(CLI::App& app);
 
 }  // namespace scanloc::app

@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   scanloc::app::RegisterTestCommand(app);
   scanloc::app::RegisterSimulateScanCommand(app);
+  scanloc::app::RegisterRefineCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

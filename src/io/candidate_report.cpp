@@ -29,6 +29,43 @@ void PrintCandidateTable(std::ostream& out, const CandidateEvaluationResult& res
   for (const auto& problem : result.problems) out << "problem: " << problem << '\n';
 }
 
+void PrintRefinementTable(std::ostream& out, const CandidateRefinementResult& result) {
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "%-8s %-6s %9s %9s %10s %27s %13s %19s %11s %8s %6s %8s %-5s %s\n", "posture",
+                "stage", "x [m]", "y [m]", "θ [rad]", "correction [mm, mm, mrad]", "MP",
+                "EV [m]", "√Disp [m]", "LD-EV", "iters", "time[ms]", "valid", "reason");
+  out << line;
+  for (const auto& c : result.candidates) {
+    const Pose2D& a = c.candidate.T_world_robot;
+    const Pose2D& b = c.T_world_robot;
+    const RefinementResult& r = c.refinement;
+    std::snprintf(line, sizeof line, "%-8s %-6s %9.4f %9.4f %9.5f %26s %6d %8.5f %9.5f %8.5f\n",
+                  c.candidate.label.c_str(), "before", a.x_m, a.y_m, a.yaw_rad, "",
+                  r.test_before.match_pairs, r.test_before.expect_value_m,
+                  std::sqrt(r.test_before.dispersion_m2), r.distance_before.expect_value_m);
+    out << line;
+    std::string reason = c.verdict == Verdict::kValid ? "rank " + std::to_string(c.rank)
+                                                      : ToString(c.verdict);
+    if (!r.converged) reason += "; not converged";
+    if (r.degenerate) reason += "; degenerate: " + r.degeneracy;
+    std::snprintf(line, sizeof line,
+                  "%-8s %-6s %9.4f %9.4f %9.5f %8.1f %8.1f %8.2f %6d %8.5f %9.5f %8.5f %6d %8.2f "
+                  "%-5s %s\n",
+                  "", "after", b.x_m, b.y_m, b.yaw_rad, 1e3 * (b.x_m - a.x_m),
+                  1e3 * (b.y_m - a.y_m), 1e3 * NormalizeAngle(b.yaw_rad - a.yaw_rad),
+                  r.test_after.match_pairs, r.test_after.expect_value_m,
+                  std::sqrt(r.test_after.dispersion_m2), r.distance_after.expect_value_m,
+                  r.iterations, 1e3 * r.time_s, c.verdict == Verdict::kValid ? "yes" : "no",
+                  reason.c_str());
+    out << line;
+  }
+  if (result.best >= 0)
+    out << "best: " << result.candidates[result.best].candidate.label << '\n';
+  else
+    out << "problem: no refined candidate passed the validation rules\n";
+}
+
 nlohmann::json ToJson(const LikelihoodTestResult& t) {
   return {{"valid_pairs", t.valid_pairs},       {"match_pairs", t.match_pairs},
           {"match_ratio", t.MatchRatio()},      {"expect_value_m", t.expect_value_m},
@@ -46,6 +83,48 @@ nlohmann::json ToJson(const LikelihoodDistanceResult& d) {
 
 nlohmann::json ToJson(const Pose2D& p) {
   return {{"x_m", p.x_m}, {"y_m", p.y_m}, {"yaw_rad", p.yaw_rad}};
+}
+
+nlohmann::json ToJson(const RefinementResult& r) {
+  nlohmann::json out = {{"T_world_laser", ToJson(r.T_world_laser)},
+                        {"converged", r.converged},
+                        {"iterations", r.iterations},
+                        {"likelihood_test_before", ToJson(r.test_before)},
+                        {"likelihood_test_after", ToJson(r.test_after)},
+                        {"likelihood_distance_before", ToJson(r.distance_before)},
+                        {"likelihood_distance_after", ToJson(r.distance_after)},
+                        {"degenerate", r.degenerate},
+                        {"degeneracy", r.degeneracy},
+                        {"time_s", r.time_s}};
+  if (r.has_covariance) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (int i = 0; i < 3; ++i)
+      rows.push_back({r.covariance(i, 0), r.covariance(i, 1), r.covariance(i, 2)});
+    out["covariance"] = rows;
+  }
+  return out;
+}
+
+nlohmann::json ToJson(const CandidateRefinementResult& result) {
+  nlohmann::json candidates = nlohmann::json::array();
+  for (const auto& c : result.candidates) {
+    const Pose2D& a = c.candidate.T_world_robot;
+    const Pose2D& b = c.T_world_robot;
+    candidates.push_back({{"label", c.candidate.label},
+                          {"initial_T_world_robot", ToJson(a)},
+                          {"refined_T_world_robot", ToJson(b)},
+                          {"correction_mm_mm_mrad",
+                           {1e3 * (b.x_m - a.x_m), 1e3 * (b.y_m - a.y_m),
+                            1e3 * NormalizeAngle(b.yaw_rad - a.yaw_rad)}},
+                          {"refinement", ToJson(c.refinement)},
+                          {"cost", c.cost},
+                          {"valid", c.verdict == Verdict::kValid},
+                          {"reason", ToString(c.verdict)},
+                          {"rank", c.rank}});
+  }
+  return {{"candidates", candidates},
+          {"best", result.best >= 0 ? nlohmann::json(result.candidates[result.best].candidate.label)
+                                    : nlohmann::json(nullptr)}};
 }
 
 nlohmann::json ToJson(const CandidateEvaluationResult& result) {
