@@ -103,9 +103,9 @@ bool FitPointLine(const PointMap& points, const Eigen::Vector2d& hit,
 }
 
 bool SurfaceLineOfBeam(const MapView& map, const SimulatedScan& sim, std::size_t beam,
-                       const Eigen::Vector2d& hit, const CeresRefinerOptions& options,
-                       SurfaceLine& line) {
-  if (sim.hit_source[beam] == HitSource::kSegment) {
+                       const Eigen::Vector2d& hit, const Eigen::Vector2d& end_point,
+                       const CeresRefinerOptions& options, SurfaceLine& line) {
+  if (sim.IsValid(beam) && sim.hit_source[beam] == HitSource::kSegment) {
     const Segment& s = map.lines->segments[sim.hit_index[beam]];
     const Eigen::Vector2d d = s.b - s.a;
     if (d.norm() < 1e-9) return false;
@@ -113,7 +113,10 @@ bool SurfaceLineOfBeam(const MapView& map, const SimulatedScan& sim, std::size_t
     line.offset = line.normal.dot(s.a);
     return true;
   }
-  return FitPointLine(*map.points, hit, options, line);
+  if (map.points == nullptr || map.points->empty()) return false;
+  if (options.point_association == PointAssociation::kNearestEndpoint)
+    return FitPointLine(*map.points, end_point, options, line);
+  return sim.IsValid(beam) && FitPointLine(*map.points, hit, options, line);
 }
 
 struct BuiltProblem {
@@ -133,14 +136,21 @@ BuiltProblem BuildProblem(const MapView& map, const LaserScan& scan, const Pose2
       options.max_residual_m > 0.0 ? options.max_residual_m : scoring.test.match_threshold_m;
   const double min_cos = std::cos(options.max_incidence_rad);
   const bool cosine = options.incidence == IncidenceWeighting::kCosine;
+  const bool nearest = options.point_association == PointAssociation::kNearestEndpoint &&
+                       map.points != nullptr && !map.points->empty();
   for (std::size_t k = 0; k < scan.size(); ++k) {
-    if (!scan.IsValid(k) || !sim.IsValid(k)) continue;
-    if (std::abs(scan.ranges_m[k] - sim.ranges_m[k]) > max_residual) continue;
+    if (!scan.IsValid(k)) continue;
+    // Pairs that the Likelihood Test would not count as matches are left out (T_Map's role).
+    if (!(sim.IsValid(k) && std::abs(scan.ranges_m[k] - sim.ranges_m[k]) <= max_residual) &&
+        !nearest)
+      continue;
     const double phi = pose.yaw_rad + scan.layout.Bearing(k);
     const Eigen::Vector2d u(std::cos(phi), std::sin(phi));
+    const Eigen::Vector2d end_point = pose.Translation() + scan.ranges_m[k] * u;
     const Eigen::Vector2d hit = pose.Translation() + sim.ranges_m[k] * u;
     SurfaceLine line;
-    if (!SurfaceLineOfBeam(map, sim, k, hit, options, line)) continue;
+    if (!SurfaceLineOfBeam(map, sim, k, hit, end_point, options, line)) continue;
+    if (std::abs(line.normal.dot(end_point) - line.offset) > max_residual) continue;
     const double cos_incidence = std::abs(line.normal.dot(u));
     // A plain range residual is undefined along the line; even the cosine form carries no
     // information from beams that slide along their surface.
@@ -218,6 +228,17 @@ const char* ToString(IncidenceWeighting weighting) {
   return "?";
 }
 
+const char* ToString(PointAssociation association) {
+  return association == PointAssociation::kSimulatedHit ? "simulated-hit" : "nearest-endpoint";
+}
+
+PointAssociation ParsePointAssociation(const std::string& name) {
+  if (name == "simulated-hit") return PointAssociation::kSimulatedHit;
+  if (name == "nearest-endpoint") return PointAssociation::kNearestEndpoint;
+  throw std::invalid_argument("unknown point association '" + name +
+                              "' (expected simulated-hit or nearest-endpoint)");
+}
+
 IncidenceWeighting ParseIncidenceWeighting(const std::string& name) {
   if (name == "none") return IncidenceWeighting::kNone;
   if (name == "cosine") return IncidenceWeighting::kCosine;
@@ -255,10 +276,17 @@ RefinementResult RefineCeres(const MapView& map, const LaserScan& scan,
   result.test_before = score.test;
   result.distance_before = score.distance;
   Pose2D pose = T_world_laser_initial;
+  // With nearest-end-point pairing on a point-only map, correspondences need no simulated scan:
+  // the scan is simulated only to score the postures before and after.
+  const bool needs_simulation = (map.lines != nullptr && !map.lines->empty()) ||
+                                options.point_association == PointAssociation::kSimulatedHit;
+  SimulatedScan simulated = score.simulated;
   BuiltProblem built;
   for (int outer = 0; outer < options.max_outer_iterations; ++outer) {
+    if (outer > 0 && needs_simulation)
+      simulated = Simulate(map, scan.layout, pose, scoring.simulation);
     double parameters[3] = {pose.x_m, pose.y_m, pose.yaw_rad};
-    built = BuildProblem(map, scan, pose, score.simulated, scoring, options, parameters);
+    built = BuildProblem(map, scan, pose, simulated, scoring, options, parameters);
     result.iterations = outer + 1;
     if (built.residual_count < 3) break;
     ceres::Solver::Options solver_options;
@@ -271,13 +299,13 @@ RefinementResult RefineCeres(const MapView& map, const LaserScan& scan,
     const Pose2D next{parameters[0], parameters[1], NormalizeAngle(parameters[2])};
     const Pose2D step = Between(pose, next);
     pose = next;
-    score = ScorePosture(map, scan, pose, scoring);
     if (std::hypot(step.x_m, step.y_m) < options.translation_tolerance_m &&
         std::abs(step.yaw_rad) < options.rotation_tolerance_rad) {
       result.converged = true;
       break;
     }
   }
+  score = ScorePosture(map, scan, pose, scoring);
   result.T_world_laser = pose;
   result.test_after = score.test;
   result.distance_after = score.distance;

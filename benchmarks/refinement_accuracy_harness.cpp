@@ -1,0 +1,178 @@
+// Refinement on real scans: for each public log, a reference point map is built from the scans
+// with corrected poses (every other one), the held-out scans are perturbed (fixed seed) and refined
+// by every method, and the results are scored against the corrected poses. All methods run in the
+// same process, on the same scans, one after the other, so their times compare side by side.
+//
+//   refinement_accuracy_harness [--datasets DIR] [--scans N] [--seed S] [--offset-m D]
+//                               [--offset-rad A] [--methods LIST]
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "scanloc/io/carmen_log.hpp"
+#include "scanloc/io/trajectory.hpp"
+#include "scanloc/maps/point_map.hpp"
+#include "scanloc/refinement/refiner.hpp"
+
+namespace {
+
+using namespace scanloc;
+
+struct Sample {
+  LaserScan scan;
+  Pose2D T_world_laser;  // corrected
+};
+
+// The scans of a log whose timestamps have a corrected pose, in file order.
+std::vector<Sample> LoadCorrectedScans(const std::string& log, const std::string& poses) {
+  std::map<long long, Pose2D> corrected;  // keyed by timestamp in 10 µs ticks
+  for (const auto& p : ReadCorrectedPoses(poses))
+    corrected[std::llround(p.timestamp_s * 1e5)] = p.pose;
+  CarmenReader reader(log);
+  std::vector<Sample> samples;
+  CarmenRecord record;
+  while (reader.Next(record)) {
+    if (record.kind != CarmenRecord::Kind::kLaser) continue;
+    const long long tick = std::llround(record.timestamp_s * 1e5);
+    for (const long long t : {tick, tick - 1, tick + 1})
+      if (const auto it = corrected.find(t); it != corrected.end()) {
+        samples.push_back({record.scan, reader.mounting().LaserPose(it->second)});
+        break;
+      }
+  }
+  return samples;
+}
+
+struct MethodSpec {
+  std::string name;
+  RefinerOptions options;
+};
+
+std::vector<MethodSpec> AllMethods() {
+  std::vector<MethodSpec> methods;
+  for (const auto association :
+       {PointAssociation::kNearestEndpoint, PointAssociation::kSimulatedHit})
+    for (const auto weighting :
+         {IncidenceWeighting::kCosine, IncidenceWeighting::kNone, IncidenceWeighting::kGate}) {
+      RefinerOptions o;
+      o.method = RefinementMethod::kCeres;
+      o.ceres.incidence = weighting;
+      o.ceres.point_association = association;
+      methods.push_back({std::string("ceres-") + ToString(weighting) + "-" +
+                             (association == PointAssociation::kSimulatedHit ? "sim" : "nn"),
+                         o});
+    }
+  RefinerOptions ed;
+  ed.method = RefinementMethod::kErrorDescent;
+  methods.push_back({"error-descent", ed});
+  RefinerOptions icp;
+  icp.method = RefinementMethod::kIcp;
+  methods.push_back({"icp-point", icp});
+  icp.icp.point_to_plane = true;
+  methods.push_back({"icp-line", icp});
+  return methods;
+}
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return NAN;
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string datasets = std::getenv("SCANLOC_DATASETS") ? std::getenv("SCANLOC_DATASETS")
+                                                         : "../shared/datasets";
+  int scans_per_dataset = 100;
+  unsigned seed = 1;
+  double offset_m = 0.2, offset_rad = 0.05;
+  std::string only_methods;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string key = argv[i], value = argv[i + 1];
+    if (key == "--datasets") datasets = value;
+    else if (key == "--scans") scans_per_dataset = std::stoi(value);
+    else if (key == "--seed") seed = static_cast<unsigned>(std::stoul(value));
+    else if (key == "--offset-m") offset_m = std::stod(value);
+    else if (key == "--offset-rad") offset_rad = std::stod(value);
+    else if (key == "--methods") only_methods = "," + value + ",";
+    else {
+      std::fprintf(stderr, "unknown option %s\n", key.c_str());
+      return 2;
+    }
+  }
+  if (!std::filesystem::is_directory(datasets)) {
+    std::fprintf(stderr, "datasets folder %s not found (set SCANLOC_DATASETS)\n", datasets.c_str());
+    return 2;
+  }
+  std::vector<MethodSpec> methods;
+  for (auto& m : AllMethods())
+    if (only_methods.empty() || only_methods.find("," + m.name + ",") != std::string::npos)
+      methods.push_back(m);
+
+  std::printf("Refinement from perturbed postures (%.2f m in a random direction, ±%.3f rad), "
+              "%d held-out scans per log, seed %u\n",
+              offset_m, offset_rad, scans_per_dataset, seed);
+  std::printf("success: within 0.05 m and 0.01 rad of the corrected pose\n\n");
+  std::printf("| log | method | success | median error [mm] | median error [mrad] | median time "
+              "[ms] | mean time [ms] | converged |\n|---|---|---|---|---|---|---|---|\n");
+  for (const std::string name : {"intel", "aces", "fr079"}) {
+    const auto samples = LoadCorrectedScans(datasets + "/" + name + ".clf.gz",
+                                            datasets + "/" + name + ".corrected-poses.txt");
+    PointMap map;  // default de-duplication cell (0.05 m)
+    std::vector<const Sample*> held_out;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      if (i % 2 == 0) map.InsertScan(samples[i].scan, samples[i].T_world_laser);
+      else held_out.push_back(&samples[i]);
+    }
+    std::vector<const Sample*> tests;
+    const std::size_t n = std::min<std::size_t>(scans_per_dataset, held_out.size());
+    for (std::size_t i = 0; i < n; ++i) tests.push_back(held_out[i * held_out.size() / n]);
+    std::fprintf(stderr, "%s: %zu corrected scans, map of %zu points, %zu test scans\n",
+                 name.c_str(), samples.size(), map.size(), tests.size());
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> direction(-M_PI, M_PI);
+    std::vector<Pose2D> starts;
+    for (const Sample* s : tests) {
+      const double a = direction(rng);
+      const double yaw = (direction(rng) >= 0.0 ? 1.0 : -1.0) * offset_rad;
+      starts.push_back({s->T_world_laser.x_m + offset_m * std::cos(a),
+                        s->T_world_laser.y_m + offset_m * std::sin(a),
+                        NormalizeAngle(s->T_world_laser.yaw_rad + yaw)});
+    }
+    const MapView view{nullptr, &map};
+    ScoringOptions scoring;
+    for (const auto& method : methods) {
+      std::vector<double> errors_m, errors_rad, times_ms;
+      int successes = 0, converged = 0;
+      for (std::size_t i = 0; i < tests.size(); ++i) {
+        const auto start = std::chrono::steady_clock::now();
+        const RefinementResult r = Refine(view, tests[i]->scan, starts[i], scoring, method.options);
+        times_ms.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count());
+        const Pose2D error = Between(tests[i]->T_world_laser, r.T_world_laser);
+        const double e_m = std::hypot(error.x_m, error.y_m), e_rad = std::abs(error.yaw_rad);
+        errors_m.push_back(e_m);
+        errors_rad.push_back(e_rad);
+        successes += e_m < 0.05 && e_rad < 0.01;
+        converged += r.converged;
+      }
+      double mean_ms = 0.0;
+      for (const double t : times_ms) mean_ms += t / times_ms.size();
+      std::printf("| %s | %s | %.0f %% | %.1f | %.2f | %.2f | %.2f | %d/%zu |\n", name.c_str(),
+                  method.name.c_str(), 100.0 * successes / tests.size(), 1e3 * Median(errors_m),
+                  1e3 * Median(errors_rad), Median(times_ms), mean_ms, converged, tests.size());
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
