@@ -77,9 +77,14 @@ Config ConfigArguments::Build() const {
       throw std::runtime_error("--set " + assignment + ": " + e.what());
     }
   }
-  if (min_match_ratio >= 0.0) config.validation.min_match_ratio = min_match_ratio;
-  if (match_threshold_m >= 0.0) config.scoring.test.match_threshold_m = match_threshold_m;
-  config.Validate();
+  if (min_match_ratio) config.validation.min_match_ratio = *min_match_ratio;
+  if (match_threshold_m) config.scoring.test.match_threshold_m = *match_threshold_m;
+  try {
+    config.Validate();
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(std::string("invalid option (--config, --set or a flag): ") +
+                             e.what());
+  }
   return config;
 }
 

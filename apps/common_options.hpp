@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,8 +33,8 @@ LoadedMaps LoadMaps(const MapArguments& arguments, const Config& config, bool re
 struct ConfigArguments {
   std::string config_path;         // --config FILE (JSON)
   std::vector<std::string> sets;   // --set section.key=value, applied after the file
-  double min_match_ratio = -1.0;   // --min-match-ratio (shortcut for validation.min_match_ratio)
-  double match_threshold_m = -1.0; // --match-threshold (likelihood_test.match_threshold_m)
+  std::optional<double> min_match_ratio;    // --min-match-ratio (validation.min_match_ratio)
+  std::optional<double> match_threshold_m;  // --match-threshold (likelihood_test.match_threshold_m)
   void Register(CLI::App& command);
   Config Build() const;
 };

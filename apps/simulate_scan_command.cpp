@@ -1,5 +1,6 @@
 // scanloc simulate-scan: one laser scan of a line world from a known posture, with noise.
 
+#include <cmath>
 #include <iostream>
 #include <random>
 
@@ -16,6 +17,7 @@ void RegisterSimulateScanCommand(CLI::App& app) {
     std::string out_path;
     unsigned seed = 1;
     LaserSimulatorOptions laser;
+    std::vector<double> body_sector;
   };
   auto a = std::make_shared<Arguments>();
   CLI::App* command = app.add_subcommand(
@@ -35,12 +37,16 @@ void RegisterSimulateScanCommand(CLI::App& app) {
   command->add_option("--noise", a->laser.range_noise_m, "range noise σ at short range (m)");
   command->add_option("--noise-per-m", a->laser.range_noise_per_m, "σ growth per metre");
   command->add_option("--dropout", a->laser.dropout_probability, "missing-return probability");
-  command->add_option("--body-sector", [a](const CLI::results_t& r) {
-        a->laser.body_from_rad = std::stod(r.at(0));
-        a->laser.body_to_rad = std::stod(r.at(1));
-        return true;
-      }, "bearings (rad, laser frame) hitting the robot body: FROM TO")->expected(2);
+  command->add_option("--body-sector", a->body_sector,
+                      "bearings (rad, laser frame) hitting the robot body: FROM TO")
+      ->expected(2);
   command->final_callback([a] {
+    for (const double v : a->pose)
+      if (!std::isfinite(v)) throw std::runtime_error("--pose: expected three finite numbers");
+    if (!a->body_sector.empty()) {
+      a->laser.body_from_rad = a->body_sector[0];
+      a->laser.body_to_rad = a->body_sector[1];
+    }
     LineMap world;
     for (const auto& path : a->world_paths) {
       const LineMap part = ReadLineMap(path);

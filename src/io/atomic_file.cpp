@@ -28,7 +28,8 @@ void WriteFileAtomically(const std::string& path,
   const std::string temporary = TemporaryPathFor(path);
   {
     std::ofstream out(temporary);
-    if (!out) throw std::runtime_error("cannot open " + temporary + " for writing");
+    if (!out)
+      throw std::runtime_error("cannot write " + path + " (is its folder there and writable?)");
     try {
       write(out);
     } catch (...) {

@@ -1,6 +1,8 @@
 #include "scanloc/io/candidates_file.hpp"
 
+#include <cmath>
 #include <fstream>
+#include <stdexcept>
 #include <iomanip>
 
 #include "scanloc/io/atomic_file.hpp"
@@ -31,6 +33,16 @@ std::vector<Candidate> ReadCandidatesFile(const std::string& path) {
 }
 
 void WriteCandidatesFile(const std::vector<Candidate>& candidates, const std::string& path) {
+  // Refuse what ReadCandidatesFile could not read back as written.
+  for (const auto& c : candidates) {
+    const Pose2D& p = c.T_world_robot;
+    if (!std::isfinite(p.x_m) || !std::isfinite(p.y_m) || !std::isfinite(p.yaw_rad))
+      throw std::invalid_argument("WriteCandidatesFile: candidate '" + c.label +
+                                  "' has a non-finite posture");
+    if (c.label.empty() || c.label.find_first_of(" \t\r\n#") != std::string::npos)
+      throw std::invalid_argument("WriteCandidatesFile: label '" + c.label +
+                                  "' must be one word without '#'");
+  }
   WriteFileAtomically(path, [&](std::ostream& out) {
     out << "# x y theta label (robot posture: metres, radians)\n" << std::setprecision(10);
     for (const auto& c : candidates)

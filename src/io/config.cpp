@@ -1,6 +1,8 @@
 #include "scanloc/io/config.hpp"
 
 #include <fstream>
+#include <limits>
+#include <type_traits>
 #include <nlohmann/json.hpp>
 #include <algorithm>
 #include <stdexcept>
@@ -20,11 +22,19 @@ class Section {
   Section& Field(const char* key, T& field) {
     known_.push_back(key);
     if (const auto it = object_.find(key); it != object_.end()) {
-      try {
+      const std::string where = path_ + "." + key;
+      if constexpr (std::is_same_v<T, int>) {
+        // get<int>() would truncate 20.9 and wrap 2^32 + 20: refuse both.
+        if (!it->is_number_integer() || *it < std::numeric_limits<int>::min() ||
+            *it > std::numeric_limits<int>::max())
+          throw std::runtime_error(where + ": expected a whole number");
+        field = it->template get<int>();
+      } else if constexpr (std::is_same_v<T, std::string>) {
+        if (!it->is_string()) throw std::runtime_error(where + ": expected a string (a name)");
+        field = it->template get<std::string>();
+      } else {
+        if (!it->is_number()) throw std::runtime_error(where + ": expected a number");
         field = it->template get<T>();
-      } catch (const json::exception&) {
-        throw std::runtime_error(path_ + "." + key + ": expected a " +
-                                 (std::is_same_v<T, int> ? "whole number" : "number"));
       }
     }
     return *this;

@@ -1,10 +1,13 @@
 #include "scanloc/io/scan_file.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <optional>
 #include <sstream>
+#include <algorithm>
+#include <cstdlib>
 
 #include "scanloc/io/atomic_file.hpp"
 #include "scanloc/io/carmen_log.hpp"
@@ -49,6 +52,7 @@ LaserScan ReadScanFile(const std::string& path) {
   std::optional<long> beams;
   std::optional<double> angle_min, angle_increment;
   bool have_header = false, have_ranges = false;
+  std::string last_block;  // the block just read, to name an excess of values after it
   std::string line;
   std::size_t number = 0;
   while (std::getline(in, line)) {
@@ -88,11 +92,22 @@ LaserScan ReadScanFile(const std::string& path) {
       ReadBlock(in, path, number, fields, static_cast<std::size_t>(*beams), key,
                 key == "ranges" ? scan.ranges_m : scan.reflectance);
       have_ranges = have_ranges || key == "ranges";
+      last_block = key;
+      continue;
     } else {
+      char* end = nullptr;
+      std::strtod(key.c_str(), &end);
+      if (!last_block.empty() && end != key.c_str() && *end == '\0')
+        throw ParseError(path, number,
+                         "more than " + std::to_string(*beams) + " " + last_block +
+                             " values (beams " + std::to_string(*beams) + ")");
       throw ParseError(path, number, "unknown key '" + key + "'");
     }
+    last_block.clear();
   }
-  if (!have_header) throw ParseError(path, number, "empty scan file: expected 'scanloc_scan 1'");
+  if (!have_header)
+    throw ParseError(path, std::max<std::size_t>(number, 1),
+                     "empty scan file: expected 'scanloc_scan 1'");
   if (!beams || !angle_min || !angle_increment || !have_ranges)
     throw ParseError(path, number,
                      "incomplete scan: 'beams', 'angle_min_rad', 'angle_increment_rad' and "
@@ -120,9 +135,14 @@ void WriteScanFile(const LaserScan& scan, const std::string& path) {
     out << "range_max_m " << scan.layout.range_max_m << '\n';
     out << "timestamp_s " << scan.timestamp_s << '\n';
     auto block = [&](const char* name, const std::vector<double>& values) {
-      out << name << '\n' << std::setprecision(6);
-      for (std::size_t i = 0; i < values.size(); ++i)
-        out << values[i] << ((i + 1) % 10 == 0 || i + 1 == values.size() ? '\n' : ' ');
+      out << name << '\n';
+      char text[32];
+      for (std::size_t i = 0; i < values.size(); ++i) {
+        // The shortest text that reads back to the same double: 19.9999996 must not become 20.
+        const auto end = std::to_chars(text, text + sizeof text, values[i]).ptr;
+        out.write(text, end - text);
+        out << ((i + 1) % 10 == 0 || i + 1 == values.size() ? '\n' : ' ');
+      }
     };
     block("ranges", scan.ranges_m);
     if (!scan.reflectance.empty()) block("reflectance", scan.reflectance);
@@ -132,6 +152,9 @@ void WriteScanFile(const LaserScan& scan, const std::string& path) {
 LaserScan LoadScan(const std::string& path, std::size_t carmen_index) {
   for (const char* suffix : {".clf", ".clf.gz", ".log", ".log.gz"})
     if (EndsWith(path, suffix)) return ReadCarmenScan(path, carmen_index);
+  if (carmen_index != 0)
+    throw std::runtime_error(path + ": a scan index is only meaningful for CARMEN logs "
+                             "(.clf, .clf.gz, .log, .log.gz)");
   return ReadScanFile(path);
 }
 

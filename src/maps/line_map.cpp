@@ -46,7 +46,12 @@ std::vector<Eigen::Vector2d> SampleLineMap(const LineMap& map, double spacing_m)
   std::vector<Eigen::Vector2d> points;
   for (const auto& s : map.segments) {
     const double length = s.Length();
-    const auto intervals = static_cast<std::size_t>(std::ceil(length / spacing_m));
+    const double count = std::ceil(length / spacing_m);
+    // A segment of 10 km at the default spacing is 1.3 M points; past that it is an input error.
+    if (!std::isfinite(count) || count > 1e7)
+      throw std::invalid_argument("SampleLineMap: a segment of " + std::to_string(length) +
+                                  " m would need more than 10 million samples");
+    const auto intervals = static_cast<std::size_t>(count);
     if (intervals == 0) {
       points.push_back(s.a);
       continue;

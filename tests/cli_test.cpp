@@ -1,0 +1,340 @@
+// End-to-end tests of the `scanloc` executable: exit status, table, JSON, and the messages for bad
+// input, which must name file and line and never come from a crash.
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "scanloc/io/scan_file.hpp"
+#include "test_support.hpp"
+
+extern char** environ;
+
+namespace scanloc {
+namespace {
+
+const std::string kClassroom = std::string(SCANLOC_SOURCE_DIR) + "/datasets/classroom";
+const std::string kMap = kClassroom + "/classroom.lines";
+const std::string kScan = kClassroom + "/scan.scan";
+const std::string kCandidates = kClassroom + "/candidates.txt";
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+struct RunResult {
+  bool exited = false;  // ended through exit(), not killed by a signal
+  int exit_code = -1;   // valid when exited
+  int signal = 0;       // the signal that ended it, when not exited
+  std::string out, err;
+};
+
+std::ostream& operator<<(std::ostream& os, const RunResult& r) {
+  return os << (r.exited ? "exit " + std::to_string(r.exit_code)
+                         : "killed by signal " + std::to_string(r.signal))
+            << "\n--- stdout ---\n"
+            << r.out << "--- stderr ---\n"
+            << r.err;
+}
+
+// Each test runs the binary in its own directory, removed afterwards.
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = testing::TemporaryDir(); }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  std::string Write(const std::string& name, const std::string& content) const {
+    const std::string path = dir_ + "/" + name;
+    std::ofstream(path) << content;
+    return path;
+  }
+
+  // Runs SCANLOC_BINARY with `arguments` (no shell: nothing to quote), stdout and stderr captured.
+  RunResult Run(const std::vector<std::string>& arguments) const {
+    const std::string out_path = dir_ + "/stdout.txt", err_path = dir_ + "/stderr.txt";
+    std::vector<std::string> words = {SCANLOC_BINARY};
+    words.insert(words.end(), arguments.begin(), arguments.end());
+    std::vector<char*> argv;
+    for (auto& word : words) argv.push_back(word.data());
+    argv.push_back(nullptr);
+
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out_path.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_path.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    pid_t pid = 0;
+    const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    RunResult result;
+    if (spawned != 0) {
+      ADD_FAILURE() << "cannot start " << SCANLOC_BINARY;
+      return result;
+    }
+    int status = 0;
+    waitpid(pid, &status, 0);
+    result.exited = WIFEXITED(status);
+    result.exit_code = result.exited ? WEXITSTATUS(status) : -1;
+    result.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+    result.out = ReadText(out_path);
+    result.err = ReadText(err_path);
+    return result;
+  }
+
+  // The classroom job with some inputs or options replaced.
+  static std::vector<std::string> TestJob(const std::string& map, const std::string& scan,
+                                          const std::string& candidates,
+                                          const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> arguments = {"test", "--scan", scan, "--candidates", candidates};
+    if (!map.empty()) arguments.insert(arguments.end(), {"--map", map});
+    arguments.insert(arguments.end(), extra.begin(), extra.end());
+    return arguments;
+  }
+
+  // The run failed cleanly (exit code ≠ 0, no signal) with `expected` in its message.
+  static void ExpectCleanFailure(const RunResult& r, const std::string& expected) {
+    EXPECT_TRUE(r.exited) << r;
+    EXPECT_NE(r.exit_code, 0) << r;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << "expected '" << expected << "'\n" << r;
+    EXPECT_TRUE(r.out.empty()) << "no partial result on stdout\n" << r;
+  }
+
+  std::string dir_;
+};
+
+bool Contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// The table row of candidate `label`.
+std::string RowOf(const std::string& table, const std::string& label) {
+  for (std::size_t begin = 0; begin < table.size();) {
+    const std::size_t end = table.find('\n', begin);
+    const std::string line = table.substr(begin, end - begin);
+    if (line.rfind(label + " ", 0) == 0) return line;
+    if (end == std::string::npos) break;
+    begin = end + 1;
+  }
+  return "";
+}
+
+TEST_F(CliTest, ClassroomJobAcceptsP0AsBestAndRejectsP3ByRule3) {
+  const RunResult r = Run(TestJob(kMap, kScan, kCandidates));
+  ASSERT_TRUE(r.exited) << r;
+  ASSERT_EQ(r.exit_code, 0) << r;
+  EXPECT_TRUE(Contains(r.out, "best: p0")) << r;
+  EXPECT_TRUE(Contains(RowOf(r.out, "p0"), "yes")) << r;
+  EXPECT_TRUE(Contains(RowOf(r.out, "p0"), "rank 0")) << r;
+  EXPECT_TRUE(Contains(RowOf(r.out, "p3"), "no")) << r;
+  EXPECT_TRUE(Contains(RowOf(r.out, "p3"), "rule 3")) << r;
+  EXPECT_FALSE(Contains(r.out, "problem:")) << r;
+}
+
+TEST_F(CliTest, JsonOutputHasFourCandidatesWithTwentySlotHistograms) {
+  const RunResult r = Run(TestJob(kMap, kScan, kCandidates, {"--json"}));
+  ASSERT_TRUE(r.exited) << r;
+  ASSERT_EQ(r.exit_code, 0) << r;
+  nlohmann::json out;
+  ASSERT_NO_THROW(out = nlohmann::json::parse(r.out)) << r;
+  EXPECT_EQ(out.at("best"), "p0");
+  const auto& candidates = out.at("candidates");
+  ASSERT_EQ(candidates.size(), 4u);
+  const char* labels[] = {"p0", "p1", "p2", "p3"};
+  for (std::size_t i = 0; i < 4; ++i) {
+    const auto& c = candidates[i];
+    EXPECT_EQ(c.at("label"), labels[i]);
+    const auto& test = c.at("likelihood_test");
+    const auto& histogram = test.at("histogram");
+    ASSERT_EQ(histogram.size(), 20u) << labels[i];
+    // (3.8) MatchPairs is the histogram's sum.
+    int sum = 0;
+    for (const auto& t : histogram) sum += t.get<int>();
+    EXPECT_EQ(sum, test.at("match_pairs").get<int>()) << labels[i];
+    EXPECT_LE(test.at("match_pairs").get<int>(), test.at("valid_pairs").get<int>()) << labels[i];
+  }
+  EXPECT_TRUE(candidates[0].at("valid").get<bool>());
+  EXPECT_EQ(candidates[0].at("rank"), 0);
+  EXPECT_FALSE(candidates[3].at("valid").get<bool>());
+  EXPECT_TRUE(Contains(candidates[3].at("reason").get<std::string>(), "rule 3"));
+  EXPECT_EQ(out.at("config").at("likelihood_test").at("slot_count"), 20);
+}
+
+TEST_F(CliTest, SetSlotCountChangesTheHistogramLength) {
+  const RunResult r =
+      Run(TestJob(kMap, kScan, kCandidates, {"--json", "--set", "likelihood_test.slot_count=30"}));
+  ASSERT_TRUE(r.exited && r.exit_code == 0) << r;
+  const auto out = nlohmann::json::parse(r.out);
+  EXPECT_EQ(out.at("candidates")[0].at("likelihood_test").at("histogram").size(), 30u);
+}
+
+TEST_F(CliTest, LineMapWithABadLineFailsNamingFileAndLine) {
+  const std::string map = Write("bad.lines", "0 0 1 0\n# comment\n0 0 x 1\n");
+  ExpectCleanFailure(Run(TestJob(map, kScan, kCandidates)), map + ":3:");
+}
+
+TEST_F(CliTest, CandidatesFileWithTwoFieldsFailsNamingFileAndLine) {
+  const std::string candidates = Write("two.txt", "1.0 2.0 0.0 p0\n1.0 2.0\n");
+  ExpectCleanFailure(Run(TestJob(kMap, kScan, candidates)), candidates + ":2:");
+}
+
+TEST_F(CliTest, ScanWithNaNInTheHeaderFailsNamingFileAndLine) {
+  const std::string scan = Write("nan.scan",
+                                 "scanloc_scan 1\nbeams 3\nangle_min_rad nan\n"
+                                 "angle_increment_rad 0.5\nranges 1 2 3\n");
+  const RunResult r = Run(TestJob(kMap, scan, kCandidates));
+  ExpectCleanFailure(r, scan + ":3:");
+  EXPECT_TRUE(Contains(r.err, "finite")) << r;
+}
+
+TEST_F(CliTest, MissingScanFileFailsNamingIt) {
+  const std::string scan = dir_ + "/missing.scan";
+  ExpectCleanFailure(Run(TestJob(kMap, scan, kCandidates)), scan);
+}
+
+TEST_F(CliTest, SlotCountZeroIsRefused) {
+  ExpectCleanFailure(
+      Run(TestJob(kMap, kScan, kCandidates, {"--set", "likelihood_test.slot_count=0"})),
+      "slot_count");
+}
+
+TEST_F(CliTest, UnknownSetKeyIsRefusedWithItsPath) {
+  const RunResult r = Run(TestJob(kMap, kScan, kCandidates, {"--set", "validation.nonsense=1"}));
+  ExpectCleanFailure(r, "config.validation");
+  EXPECT_TRUE(Contains(r.err, "'nonsense'")) << r;
+}
+
+TEST_F(CliTest, SetWithoutValueIsRefused) {
+  ExpectCleanFailure(
+      Run(TestJob(kMap, kScan, kCandidates, {"--set", "likelihood_test.slot_count"})),
+      "section.key=value");
+}
+
+TEST_F(CliTest, MinMatchRatioAboveOneIsRefused) {
+  ExpectCleanFailure(Run(TestJob(kMap, kScan, kCandidates, {"--min-match-ratio", "5"})),
+                     "min_match_ratio");
+}
+
+// A negative or NaN --min-match-ratio or --match-threshold is refused, not taken for "not given".
+TEST_F(CliTest, NegativeMinMatchRatioOrMatchThresholdIsRefused) {
+  for (const auto& extra : std::vector<std::vector<std::string>>{{"--min-match-ratio", "-0.5"},
+                                                                 {"--min-match-ratio", "nan"},
+                                                                 {"--match-threshold", "-3"}}) {
+    const RunResult r = Run(TestJob(kMap, kScan, kCandidates, extra));
+    EXPECT_TRUE(r.exited) << r;
+    EXPECT_NE(r.exit_code, 0) << extra[0] << " " << extra[1] << "\n" << r;
+  }
+}
+
+TEST_F(CliTest, NoMapIsRefused) {
+  ExpectCleanFailure(Run(TestJob("", kScan, kCandidates)), "a map is required");
+}
+
+TEST_F(CliTest, EmptyLineMapRunsAndReportsTheProblem) {
+  const std::string map = Write("empty.lines", "# nothing here\n");
+  const RunResult r = Run(TestJob(map, kScan, kCandidates));
+  ASSERT_TRUE(r.exited) << r;
+  EXPECT_EQ(r.exit_code, 0) << r;
+  EXPECT_TRUE(Contains(r.out, "problem: the map is empty")) << r;
+  EXPECT_FALSE(Contains(r.out, "best:")) << r;
+}
+
+TEST_F(CliTest, ScanWithoutValidRangeRunsAndReportsTheProblem) {
+  std::string ranges;
+  for (int i = 0; i < 360; ++i) ranges += "-1\n";
+  const std::string scan = Write("dark.scan",
+                                 "scanloc_scan 1\nbeams 360\nangle_min_rad -3.14159265358979\n"
+                                 "angle_increment_rad 0.0174532925199433\nranges\n" +
+                                     ranges);
+  const RunResult r = Run(TestJob(kMap, scan, kCandidates));
+  ASSERT_TRUE(r.exited) << r;
+  EXPECT_EQ(r.exit_code, 0) << r;
+  EXPECT_TRUE(Contains(r.out, "problem: the scan has no valid range")) << r;
+  EXPECT_FALSE(Contains(r.out, "best:")) << r;
+}
+
+TEST_F(CliTest, EmptyMapJsonStillParses) {
+  const std::string map = Write("empty.lines", "");
+  const RunResult r = Run(TestJob(map, kScan, kCandidates, {"--json"}));
+  ASSERT_TRUE(r.exited && r.exit_code == 0) << r;
+  nlohmann::json out;
+  ASSERT_NO_THROW(out = nlohmann::json::parse(r.out)) << r;
+  EXPECT_TRUE(out.at("best").is_null());
+  EXPECT_EQ(out.at("problems")[0], "the map is empty");
+}
+
+TEST_F(CliTest, SimulateScanWritesTheRequestedBeamCount) {
+  const std::string out = dir_ + "/simulated.scan";
+  const RunResult r = Run({"simulate-scan", "--world", kMap, "--pose", "1.126", "3.112", "0.0463",
+                           "--beams", "720", "--seed", "7", "--out", out});
+  ASSERT_TRUE(r.exited && r.exit_code == 0) << r;
+  const LaserScan scan = ReadScanFile(out);
+  EXPECT_EQ(scan.size(), 720u);
+  EXPECT_EQ(scan.layout.beam_count, 720u);
+  // Inside a closed room every beam hits a wall well within 20 m.
+  EXPECT_EQ(scan.CountValid(), 720u);
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir_))
+    names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"simulated.scan", "stderr.txt", "stdout.txt"}))
+      << "no temporary file remains";
+}
+
+TEST_F(CliTest, SimulateScanWithTheSameSeedIsByteIdentical) {
+  auto simulate = [&](const std::string& name, const std::string& seed) {
+    const std::string out = dir_ + "/" + name;
+    const RunResult r =
+        Run({"simulate-scan", "--world", kMap, "--pose", "3", "3.5", "0.5", "--beams", "500",
+             "--noise", "0.05", "--dropout", "0.1", "--seed", seed, "--out", out});
+    EXPECT_TRUE(r.exited && r.exit_code == 0) << r;
+    return ReadText(out);
+  };
+  const std::string first = simulate("a.scan", "42");
+  EXPECT_FALSE(first.empty());
+  EXPECT_EQ(simulate("b.scan", "42"), first);
+  EXPECT_NE(simulate("c.scan", "43"), first) << "another seed draws other noise";
+}
+
+TEST_F(CliTest, SimulateScanIntoMissingDirectoryFailsCleanly) {
+  ExpectCleanFailure(Run({"simulate-scan", "--world", kMap, "--pose", "1", "1", "0", "--out",
+                          dir_ + "/no/such/dir/x.scan"}),
+                     "no/such/dir");
+}
+
+TEST_F(CliTest, SimulateScanWithOneBeamIsRefused) {
+  ExpectCleanFailure(Run({"simulate-scan", "--world", kMap, "--pose", "1", "1", "0", "--beams", "1",
+                          "--out", dir_ + "/x.scan"}),
+                     "beam_count");
+}
+
+// "--body-sector abc 1" is refused with a message naming the option.
+TEST_F(CliTest, SimulateScanBodySectorNotANumberNamesTheOption) {
+  ExpectCleanFailure(Run({"simulate-scan", "--world", kMap, "--pose", "1", "1", "0",
+                          "--body-sector", "abc", "1", "--out", dir_ + "/x.scan"}),
+                     "--body-sector");
+}
+
+// "--pose nan 0 0" is refused rather than writing a scan with no valid range.
+TEST_F(CliTest, SimulateScanRefusesANonFinitePose) {
+  const std::string out = dir_ + "/x.scan";
+  const RunResult r =
+      Run({"simulate-scan", "--world", kMap, "--pose", "nan", "0", "0", "--out", out});
+  ExpectCleanFailure(r, "pose");
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+}  // namespace
+}  // namespace scanloc
