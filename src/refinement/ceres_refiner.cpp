@@ -152,10 +152,10 @@ BuiltProblem BuildProblem(const MapView& map, const LaserScan& scan, const Pose2
     if (!SurfaceLineOfBeam(map, sim, k, hit, end_point, options, line)) continue;
     if (std::abs(line.normal.dot(end_point) - line.offset) > max_residual) continue;
     const double cos_incidence = std::abs(line.normal.dot(u));
-    // A plain range residual is undefined along the line; even the cosine form carries no
-    // information from beams that slide along their surface.
-    if (!cosine && cos_incidence < min_cos) continue;
-    if (cosine && cos_incidence < 1e-3) continue;
+    // Beams that slide along their surface carry no information (and a plain range residual is
+    // undefined there); kGate also drops every beam beyond max_incidence_rad.
+    if (cos_incidence < 1e-3) continue;
+    if (options.incidence == IncidenceWeighting::kGate && cos_incidence < min_cos) continue;
     built.problem->AddResidualBlock(
         BeamResidual::Create(scan.layout.Bearing(k), scan.ranges_m[k], line, cosine),
         MakeLoss(scoring.distance), parameters);

@@ -37,7 +37,7 @@ struct CeresRefinerOptions {
   double rotation_tolerance_rad = 1e-3;
   IncidenceWeighting incidence = IncidenceWeighting::kCosine;
   PointAssociation point_association = PointAssociation::kNearestEndpoint;
-  double max_incidence_rad = 1.3;         // kNone/kGate: beams more grazing than this are dropped
+  double max_incidence_rad = 1.2;         // kGate: beams more grazing than this (69°) are dropped
   // Pairs farther apart than this are left out of the problem (T_Map's role); ≤ 0 uses T_Map.
   double max_residual_m = 0.0;
   // Point maps: the k nearest points of the hit within a radius define its local line, unless
