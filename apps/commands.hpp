@@ -8,5 +8,7 @@ namespace scanloc::app {
 void RegisterTestCommand(CLI::App& app);
 void RegisterSimulateScanCommand(CLI::App& app);
 void RegisterRefineCommand(CLI::App& app);
+void RegisterSessionCommand(CLI::App& app);
+void RegisterEvaluateCommand(CLI::App& app);
 
 }  // namespace scanloc::app

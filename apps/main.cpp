@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
   scanloc::app::RegisterTestCommand(app);
   scanloc::app::RegisterSimulateScanCommand(app);
   scanloc::app::RegisterRefineCommand(app);
+  scanloc::app::RegisterSessionCommand(app);
+  scanloc::app::RegisterEvaluateCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -3,8 +3,10 @@
 #include <zlib.h>
 
 #include <cerrno>
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -112,6 +114,9 @@ struct CarmenReader::Impl {
       throw std::runtime_error("cannot open CARMEN log " + path + ": " +
                                (errno != 0 ? std::strerror(errno) : "out of memory"));
     gzbuffer(file, kGzipBufferBytes);
+    std::error_code error;
+    file_bytes = std::filesystem::file_size(path, error);
+    if (error) file_bytes = 0;
   }
   ~Impl() { gzclose(file); }
   Impl(const Impl&) = delete;
@@ -289,7 +294,14 @@ struct CarmenReader::Impl {
   std::size_t line = 0;
   double frontlaser_offset_m = 0.0;
   bool seen_laser = false;
+  std::uintmax_t file_bytes = 0;
 };
+
+double CarmenReader::Progress() const {
+  if (impl_->file_bytes == 0) return 0.0;
+  const auto offset = gzoffset(impl_->file);  // compressed bytes consumed (plain files: bytes)
+  return offset < 0 ? 0.0 : std::min(1.0, static_cast<double>(offset) / impl_->file_bytes);
+}
 
 CarmenReader::CarmenReader(const std::string& path, CarmenOptions options)
     : impl_(std::make_unique<Impl>(path, std::move(options))) {}

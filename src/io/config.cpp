@@ -29,6 +29,14 @@ class Section {
             *it > std::numeric_limits<int>::max())
           throw std::runtime_error(where + ": expected a whole number");
         field = it->template get<int>();
+      } else if constexpr (std::is_same_v<T, bool>) {
+        if (!it->is_boolean()) throw std::runtime_error(where + ": expected true or false");
+        field = it->template get<bool>();
+      } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+        if (!it->is_array() || !std::all_of(it->begin(), it->end(),
+                                            [](const json& v) { return v.is_number(); }))
+          throw std::runtime_error(where + ": expected an array of numbers");
+        field = it->template get<std::vector<double>>();
       } else if constexpr (std::is_same_v<T, std::string>) {
         if (!it->is_string()) throw std::runtime_error(where + ": expected a string (a name)");
         field = it->template get<std::string>();
@@ -66,6 +74,9 @@ void Config::Validate() const {
   validation.Validate();
   PointMap check(point_map);  // validates its options
   if (!(line_sampling_m > 0.0)) throw std::invalid_argument("line_sampling_m must be positive");
+  refiner.ceres.Validate();
+  refiner.error_descent.Validate();
+  session.Validate();
   if (!(scoring.simulation.footprint_factor >= 0.0))
     throw std::invalid_argument("point_simulation.footprint_factor must be >= 0");
 }
@@ -106,6 +117,53 @@ void ApplyJson(const json& root, Config& c) {
       .Field("y_m", c.mounting.T_robot_laser.y_m)
       .Field("yaw_rad", c.mounting.T_robot_laser.yaw_rad)
       .RefuseUnknown();
+  auto refinement = top.Child("refinement");
+  std::string method = ToString(c.refiner.method);
+  refinement.Field("method", method);
+  auto ceres = refinement.Child("ceres");
+  std::string incidence = ToString(c.refiner.ceres.incidence);
+  std::string association = ToString(c.refiner.ceres.point_association);
+  ceres.Field("max_outer_iterations", c.refiner.ceres.max_outer_iterations)
+      .Field("max_solver_iterations", c.refiner.ceres.max_solver_iterations)
+      .Field("translation_tolerance_m", c.refiner.ceres.translation_tolerance_m)
+      .Field("rotation_tolerance_rad", c.refiner.ceres.rotation_tolerance_rad)
+      .Field("incidence", incidence)
+      .Field("point_association", association)
+      .Field("max_incidence_rad", c.refiner.ceres.max_incidence_rad)
+      .Field("max_residual_m", c.refiner.ceres.max_residual_m)
+      .Field("line_fit_neighbours", c.refiner.ceres.line_fit_neighbours)
+      .Field("line_fit_radius_m", c.refiner.ceres.line_fit_radius_m)
+      .Field("max_line_thickness", c.refiner.ceres.max_line_thickness)
+      .Field("degeneracy_ratio", c.refiner.ceres.degeneracy_ratio)
+      .RefuseUnknown();
+  refinement.Child("error_descent")
+      .Field("initial_step_m", c.refiner.error_descent.initial_step_m)
+      .Field("initial_step_rad", c.refiner.error_descent.initial_step_rad)
+      .Field("step_levels", c.refiner.error_descent.step_levels)
+      .Field("max_moves_per_level", c.refiner.error_descent.max_moves_per_level)
+      .RefuseUnknown();
+  refinement.RefuseUnknown();
+  try {
+    c.refiner.method = ParseRefinementMethod(method);
+    c.refiner.ceres.incidence = ParseIncidenceWeighting(incidence);
+    c.refiner.ceres.point_association = ParsePointAssociation(association);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(std::string("config.refinement: ") + e.what());
+  }
+  std::vector<double> initial{c.session.initial_pose.x_m, c.session.initial_pose.y_m,
+                              c.session.initial_pose.yaw_rad};
+  auto session = top.Child("session");
+  session.Field("heading_spread_rad", c.session.heading_spread_rad)
+      .Field("heading_step_rad", c.session.heading_step_rad)
+      .Field("localise_translation_m", c.session.localise_translation_m)
+      .Field("localise_rotation_rad", c.session.localise_rotation_rad)
+      .Field("insert_translation_m", c.session.insert_translation_m)
+      .Field("insert_rotation_rad", c.session.insert_rotation_rad)
+      .Field("insert_unvalidated", c.session.insert_unvalidated)
+      .Field("initial_pose", initial)
+      .RefuseUnknown();
+  if (initial.size() != 3) throw std::runtime_error("config.session.initial_pose: expected [x, y, yaw]");
+  c.session.initial_pose = {initial[0], initial[1], initial[2]};
   top.RefuseUnknown();
 }
 
@@ -152,6 +210,36 @@ json ToJson(const Config& c) {
        {{"x_m", c.mounting.T_robot_laser.x_m},
         {"y_m", c.mounting.T_robot_laser.y_m},
         {"yaw_rad", c.mounting.T_robot_laser.yaw_rad}}},
+      {"refinement",
+       {{"method", ToString(c.refiner.method)},
+        {"ceres",
+         {{"max_outer_iterations", c.refiner.ceres.max_outer_iterations},
+          {"max_solver_iterations", c.refiner.ceres.max_solver_iterations},
+          {"translation_tolerance_m", c.refiner.ceres.translation_tolerance_m},
+          {"rotation_tolerance_rad", c.refiner.ceres.rotation_tolerance_rad},
+          {"incidence", ToString(c.refiner.ceres.incidence)},
+          {"point_association", ToString(c.refiner.ceres.point_association)},
+          {"max_incidence_rad", c.refiner.ceres.max_incidence_rad},
+          {"max_residual_m", c.refiner.ceres.max_residual_m},
+          {"line_fit_neighbours", c.refiner.ceres.line_fit_neighbours},
+          {"line_fit_radius_m", c.refiner.ceres.line_fit_radius_m},
+          {"max_line_thickness", c.refiner.ceres.max_line_thickness},
+          {"degeneracy_ratio", c.refiner.ceres.degeneracy_ratio}}},
+        {"error_descent",
+         {{"initial_step_m", c.refiner.error_descent.initial_step_m},
+          {"initial_step_rad", c.refiner.error_descent.initial_step_rad},
+          {"step_levels", c.refiner.error_descent.step_levels},
+          {"max_moves_per_level", c.refiner.error_descent.max_moves_per_level}}}}},
+      {"session",
+       {{"heading_spread_rad", c.session.heading_spread_rad},
+        {"heading_step_rad", c.session.heading_step_rad},
+        {"localise_translation_m", c.session.localise_translation_m},
+        {"localise_rotation_rad", c.session.localise_rotation_rad},
+        {"insert_translation_m", c.session.insert_translation_m},
+        {"insert_rotation_rad", c.session.insert_rotation_rad},
+        {"insert_unvalidated", c.session.insert_unvalidated},
+        {"initial_pose",
+         {c.session.initial_pose.x_m, c.session.initial_pose.y_m, c.session.initial_pose.yaw_rad}}}},
   };
 }
 

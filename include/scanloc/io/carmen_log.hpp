@@ -55,6 +55,8 @@ class CarmenReader {
 
   // T_robot_laser = (D, 0, 0) from PARAM robot_frontlaser_offset D (0 when absent), or the option's
   // override. The PARAM precedes the first scan, so this is final once a laser record was returned.
+  // The fraction of the file read so far, in [0, 1] (0 when the size is unknown).
+  double Progress() const;
   LaserMounting mounting() const;
 
  private:

@@ -11,7 +11,8 @@
 #include "scanloc/geometry/laser_scan.hpp"
 #include "scanloc/likelihood/candidate_ranking.hpp"
 #include "scanloc/maps/point_map.hpp"
-#include "scanloc/refinement/refinement.hpp"
+#include "scanloc/refinement/refiner.hpp"
+#include "scanloc/session/session.hpp"
 
 namespace scanloc {
 
@@ -21,6 +22,8 @@ struct Config {
   PointMapOptions point_map;      // point_map
   double line_sampling_m = 0.0075;  // spacing when a line map is sampled to points (§3.2.2)
   LaserMounting mounting;         // mounting: {"x_m", "y_m", "yaw_rad"} of the laser on the robot
+  RefinerOptions refiner;         // refinement: {"method", "ceres": {...}, "error_descent": {...}}
+  SessionOptions session;         // session
 
   // Throws std::invalid_argument naming the first option out of its domain.
   void Validate() const;

@@ -1,0 +1,74 @@
+#pragma once
+// Iteration sources for sessions: CARMEN logs and the native sequence format.
+//
+// Native sequence (`*.seq.jsonl`): JSON Lines. The first line is a header,
+//     {"scanloc_sequence": 1, "mounting": [x_m, y_m, yaw_rad]}      (mounting optional)
+// then one iteration per line:
+//     {"timestamp_s": 12.5,
+//      "scan": {"angle_min_rad": -3.14159, "angle_increment_rad": 0.0026, "range_min_m": 0,
+//               "range_max_m": 20, "ranges": [1.23, -1, ...], "reflectance": [...]},
+//      "odometry": [x_m, y_m, yaw_rad],                               (optional, T_odom_robot)
+//      "candidates": [[x_m, y_m, yaw_rad], ...],                      (optional, T_world_robot)
+//      "truth": [x_m, y_m, yaw_rad]}                                  (optional, T_world_robot)
+// Ranges of -1 (or null) carry no echo. Errors name the file and line.
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scanloc/io/carmen_log.hpp"
+#include "scanloc/session/iteration.hpp"
+
+namespace scanloc {
+
+// One iteration per laser message (FLASER or ROBOTLASER1), its odometry the message's own.
+class CarmenIterationSource : public IterationSource {
+ public:
+  explicit CarmenIterationSource(const std::string& path, CarmenOptions options = {});
+  bool Next(Iteration& iteration) override;
+  LaserMounting mounting() const override { return reader_.mounting(); }
+  double Progress() const { return reader_.Progress(); }
+
+ private:
+  std::string path_;
+  CarmenReader reader_;
+};
+
+class SequenceFileSource : public IterationSource {
+ public:
+  explicit SequenceFileSource(const std::string& path);
+  ~SequenceFileSource() override;
+  bool Next(Iteration& iteration) override;
+  LaserMounting mounting() const override { return mounting_; }
+  // The ground-truth posture of the last iteration returned, when the sequence has one.
+  const std::optional<Pose2D>& truth() const { return truth_; }
+  double Progress() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  LaserMounting mounting_;
+  std::optional<Pose2D> truth_;
+};
+
+// Writes a native sequence, atomically (a temporary file renamed by Close()).
+class SequenceFileWriter {
+ public:
+  SequenceFileWriter(const std::string& path, const LaserMounting& mounting);
+  ~SequenceFileWriter();
+  SequenceFileWriter(const SequenceFileWriter&) = delete;
+  SequenceFileWriter& operator=(const SequenceFileWriter&) = delete;
+  void Write(const Iteration& iteration, const std::optional<Pose2D>& truth = std::nullopt);
+  void Close();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// A source for a path: CARMEN for .clf/.log (optionally .gz), native for anything else.
+std::unique_ptr<IterationSource> OpenIterationSource(const std::string& path,
+                                                     CarmenOptions carmen = {});
+
+}  // namespace scanloc

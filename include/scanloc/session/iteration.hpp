@@ -1,0 +1,31 @@
+#pragma once
+// One iteration of a session, as a sequence source delivers it, and the sources' interface.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scanloc/geometry/laser_scan.hpp"
+#include "scanloc/geometry/pose2d.hpp"
+
+namespace scanloc {
+
+struct Iteration {
+  double timestamp_s = 0.0;
+  LaserScan scan;
+  std::optional<Pose2D> odometry;            // T_odom_robot at the scan's time, when known
+  std::vector<Pose2D> external_candidates;   // T_world_robot postures from outside (if any)
+  std::string origin;                        // where it came from, e.g. "intel.clf.gz:1234"
+};
+
+// Streams iterations one at a time, so that a session never holds the whole log.
+class IterationSource {
+ public:
+  virtual ~IterationSource() = default;
+  // Fills `iteration`; false at the end. Malformed input throws ParseError (file, line).
+  virtual bool Next(Iteration& iteration) = 0;
+  // The laser's mounting on the robot as the source knows it.
+  virtual LaserMounting mounting() const = 0;
+};
+
+}  // namespace scanloc

@@ -1,0 +1,89 @@
+#pragma once
+// A localisation and mapping session: each iteration is localised against the map built so far
+// (candidates from the odometry prediction across the heading uncertainty, Likelihood Test,
+// Ceres refinement, validation by the rules), and a validated scan extends the point map (3.6).
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "scanloc/likelihood/candidate_ranking.hpp"
+#include "scanloc/maps/line_map.hpp"
+#include "scanloc/maps/point_map.hpp"
+#include "scanloc/refinement/refiner.hpp"
+#include "scanloc/session/candidate_evaluation.hpp"
+#include "scanloc/session/iteration.hpp"
+
+namespace scanloc {
+
+struct SessionOptions {
+  // Candidates: the odometry prediction turned by every multiple of heading_step_rad up to
+  // ±heading_spread_rad (in fast in-place turns the odometry heading is off by 3–6° per scan).
+  double heading_spread_rad = 0.1745;  // 10°
+  double heading_step_rad = 0.0873;    // 5°
+  // A scan is localised only when the odometry moved more than this since the last localised
+  // one; the others get the odometry prediction (their posture is still recorded).
+  double localise_translation_m = 0.05;
+  double localise_rotation_rad = 0.035;
+  // A validated scan extends the map when the robot moved more than this since the last one that
+  // did (metres, radians).
+  double insert_translation_m = 0.1;
+  double insert_rotation_rad = 0.087;
+  bool insert_unvalidated = false;  // let non-validated scans extend the map (off: they are flagged)
+  Pose2D initial_pose;              // T_world_robot of the first iteration (§3.2.2: by convention)
+  void Validate() const;
+};
+
+// Everything the operator may want to know about one iteration.
+struct IterationRecord {
+  std::size_t index = 0;
+  double timestamp_s = 0.0;
+  std::string origin;
+  bool skipped = false;          // not localised: the robot had not moved enough
+  bool first = false;            // the first iteration of a session without a prior map
+  Pose2D prediction;             // odometry prediction, T_world_robot
+  CandidateEvaluationResult candidates;
+  int chosen = -1;               // the candidate that was refined
+  std::optional<RefinementResult> refinement;
+  Pose2D T_world_robot;          // the posture kept for this scan
+  Verdict verdict = Verdict::kValid;  // rules 1–2 on the refined posture
+  bool validated = false;
+  bool inserted = false;         // the scan extended the map
+  std::size_t map_points = 0;    // after this iteration
+  double evaluate_s = 0.0, refine_s = 0.0, insert_s = 0.0, total_s = 0.0;
+};
+
+class Session {
+ public:
+  // `line_map` (may be empty) stays fixed; `point_map` is extended by the session.
+  Session(SessionOptions options, ScoringOptions scoring, ValidationOptions validation,
+          RefinerOptions refiner, LaserMounting mounting, LineMap line_map, PointMap point_map);
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  IterationRecord Process(const Iteration& iteration);
+
+  const PointMap& point_map() const { return point_map_; }
+  const LineMap& line_map() const { return line_map_; }
+  std::size_t iterations() const { return count_; }
+
+ private:
+  std::vector<Candidate> MakeCandidates(const Pose2D& prediction, const Iteration& iteration) const;
+  bool MovedMoreThan(const Pose2D& from, const Pose2D& to, double translation_m,
+                     double rotation_rad) const;
+
+  SessionOptions options_;
+  ScoringOptions scoring_;
+  ValidationOptions validation_;
+  RefinerOptions refiner_;
+  LaserMounting mounting_;
+  LineMap line_map_;
+  PointMap point_map_;
+  std::size_t count_ = 0;
+  Pose2D last_pose_;                   // T_world_robot of the previous iteration
+  std::optional<Pose2D> last_odometry_;
+  Pose2D last_localised_odometry_;     // odometry at the last localised iteration
+  std::optional<Pose2D> last_inserted_pose_;
+};
+
+}  // namespace scanloc

@@ -1,0 +1,73 @@
+#include "scanloc/io/run_folder.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "scanloc/io/atomic_file.hpp"
+#include "scanloc/io/candidate_report.hpp"
+#include "scanloc/maps/point_map_io.hpp"
+
+namespace scanloc {
+
+nlohmann::json ToJson(const IterationRecord& r) {
+  nlohmann::json out = {{"index", r.index},
+                        {"timestamp_s", r.timestamp_s},
+                        {"origin", r.origin},
+                        {"skipped", r.skipped},
+                        {"first", r.first},
+                        {"prediction", ToJson(r.prediction)},
+                        {"T_world_robot", ToJson(r.T_world_robot)},
+                        {"validated", r.validated},
+                        {"reason", ToString(r.verdict)},
+                        {"inserted", r.inserted},
+                        {"map_points", r.map_points},
+                        {"timings_ms",
+                         {{"evaluate", 1e3 * r.evaluate_s},
+                          {"refine", 1e3 * r.refine_s},
+                          {"insert", 1e3 * r.insert_s},
+                          {"total", 1e3 * r.total_s}}}};
+  if (!r.candidates.candidates.empty()) {
+    out["candidates"] = ToJson(r.candidates)["candidates"];
+    out["chosen"] = r.chosen >= 0 ? nlohmann::json(r.candidates.candidates[r.chosen].candidate.label)
+                                  : nlohmann::json(nullptr);
+    out["problems"] = r.candidates.problems;
+  }
+  if (r.refinement) {
+    out["refinement"] = ToJson(*r.refinement);
+    const Pose2D correction = Between(r.prediction, r.T_world_robot);
+    out["correction_from_prediction_mm_mm_mrad"] = {
+        1e3 * correction.x_m, 1e3 * correction.y_m, 1e3 * correction.yaw_rad};
+  }
+  return out;
+}
+
+RunFolder::RunFolder(const std::string& directory) : directory_(directory) {
+  std::error_code error;
+  std::filesystem::create_directories(directory_, error);
+  if (error || !std::filesystem::is_directory(directory_))
+    throw std::runtime_error("cannot create the run folder " + directory_ + ": " +
+                             error.message());
+  records_.open(Path("iterations.jsonl"), std::ios::trunc);
+  if (!records_) throw std::runtime_error("cannot write " + Path("iterations.jsonl"));
+}
+
+void RunFolder::Record(const IterationRecord& record) {
+  records_ << ToJson(record).dump() << '\n';
+  records_.flush();  // a line is complete on disk before the next iteration starts
+  if (!records_) throw std::runtime_error("error while writing " + Path("iterations.jsonl"));
+  trajectory_.push_back({record.timestamp_s, record.T_world_robot});
+}
+
+void RunFolder::Finish(const PointMap& map, nlohmann::json summary) {
+  records_.close();
+  WriteTumTrajectory(Path("trajectory.tum"), trajectory_);
+  SavePointMapPcd(map, Path("map.pcd"));
+  summary["files"] = {{"iterations", "iterations.jsonl"},
+                      {"trajectory", "trajectory.tum"},
+                      {"map", "map.pcd"}};
+  WriteFileAtomically(Path("summary.json"),
+                      [&](std::ostream& out) { out << summary.dump(2) << '\n'; });
+}
+
+}  // namespace scanloc

@@ -1,0 +1,227 @@
+#include "scanloc/io/sequence_sources.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+
+#include "scanloc/io/atomic_file.hpp"
+#include "scanloc/io/parse_error.hpp"
+
+namespace scanloc {
+namespace {
+
+using nlohmann::json;
+
+bool EndsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+Pose2D ParsePose(const json& value, const std::string& path, std::size_t line, const char* what) {
+  if (!value.is_array() || value.size() != 3 || !value[0].is_number() || !value[1].is_number() ||
+      !value[2].is_number())
+    throw ParseError(path, line, std::string(what) + ": expected [x_m, y_m, yaw_rad]");
+  const Pose2D pose{value[0].get<double>(), value[1].get<double>(), value[2].get<double>()};
+  if (!std::isfinite(pose.x_m) || !std::isfinite(pose.y_m) || !std::isfinite(pose.yaw_rad))
+    throw ParseError(path, line, std::string(what) + ": expected finite numbers");
+  return pose;
+}
+
+json PoseJson(const Pose2D& p) { return json::array({p.x_m, p.y_m, p.yaw_rad}); }
+
+double Number(const json& object, const char* key, const std::string& path, std::size_t line,
+              std::optional<double> fallback = std::nullopt) {
+  const auto it = object.find(key);
+  if (it == object.end()) {
+    if (fallback) return *fallback;
+    throw ParseError(path, line, std::string("scan: missing '") + key + "'");
+  }
+  if (!it->is_number() || !std::isfinite(it->get<double>()))
+    throw ParseError(path, line, std::string("scan: '") + key + "' must be a finite number");
+  return it->get<double>();
+}
+
+std::vector<double> Values(const json& array, const std::string& path, std::size_t line,
+                           const char* what) {
+  if (!array.is_array()) throw ParseError(path, line, std::string(what) + ": expected an array");
+  std::vector<double> values;
+  values.reserve(array.size());
+  for (const auto& v : array) {
+    if (v.is_null()) values.push_back(-1.0);
+    else if (v.is_number()) values.push_back(v.get<double>());
+    else throw ParseError(path, line, std::string(what) + ": expected numbers (or null)");
+  }
+  return values;
+}
+
+}  // namespace
+
+CarmenIterationSource::CarmenIterationSource(const std::string& path, CarmenOptions options)
+    : path_(path), reader_(path, std::move(options)) {}
+
+bool CarmenIterationSource::Next(Iteration& iteration) {
+  CarmenRecord record;
+  while (reader_.Next(record)) {
+    if (record.kind != CarmenRecord::Kind::kLaser) continue;
+    iteration = Iteration{};
+    iteration.timestamp_s = record.timestamp_s;
+    iteration.scan = std::move(record.scan);
+    iteration.odometry = record.odometry;
+    iteration.origin = path_ + ":" + std::to_string(record.line);
+    return true;
+  }
+  return false;
+}
+
+struct SequenceFileSource::Impl {
+  std::string path;
+  std::ifstream in;
+  std::size_t line = 0;
+  std::uintmax_t bytes = 0;
+};
+
+SequenceFileSource::SequenceFileSource(const std::string& path) : impl_(std::make_unique<Impl>()) {
+  impl_->path = path;
+  impl_->in.open(path);
+  if (!impl_->in) throw std::runtime_error("cannot open sequence " + path);
+  std::error_code error;
+  impl_->bytes = std::filesystem::file_size(path, error);
+  std::string text;
+  while (std::getline(impl_->in, text)) {
+    ++impl_->line;
+    if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
+    json header;
+    try {
+      header = json::parse(text);
+    } catch (const json::exception&) {
+      throw ParseError(path, impl_->line, "expected the header {\"scanloc_sequence\": 1, ...}");
+    }
+    if (!header.is_object() || header.value("scanloc_sequence", 0) != 1)
+      throw ParseError(path, impl_->line, "expected the header {\"scanloc_sequence\": 1, ...}");
+    if (header.contains("mounting"))
+      mounting_.T_robot_laser = ParsePose(header["mounting"], path, impl_->line, "mounting");
+    return;
+  }
+  throw ParseError(path, std::max<std::size_t>(impl_->line, 1),
+                   "empty sequence: expected the header {\"scanloc_sequence\": 1, ...}");
+}
+
+SequenceFileSource::~SequenceFileSource() = default;
+
+double SequenceFileSource::Progress() const {
+  if (impl_->bytes == 0) return 0.0;
+  const auto position = impl_->in.tellg();
+  return position < 0 ? 1.0 : std::min(1.0, static_cast<double>(position) / impl_->bytes);
+}
+
+bool SequenceFileSource::Next(Iteration& iteration) {
+  const std::string& path = impl_->path;
+  std::string text;
+  while (std::getline(impl_->in, text)) {
+    const std::size_t line = ++impl_->line;
+    if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
+    json record;
+    try {
+      record = json::parse(text);
+    } catch (const json::exception& e) {
+      throw ParseError(path, line, std::string("expected one JSON object per line: ") + e.what());
+    }
+    if (!record.is_object() || !record.contains("scan") || !record["scan"].is_object())
+      throw ParseError(path, line, "expected an object with a \"scan\" object");
+    iteration = Iteration{};
+    iteration.timestamp_s = Number(record, "timestamp_s", path, line, 0.0);
+    const json& scan = record["scan"];
+    LaserScan& s = iteration.scan;
+    s.timestamp_s = iteration.timestamp_s;
+    s.layout.angle_min_rad = Number(scan, "angle_min_rad", path, line);
+    s.layout.angle_increment_rad = Number(scan, "angle_increment_rad", path, line);
+    s.layout.range_min_m = Number(scan, "range_min_m", path, line, 0.0);
+    s.layout.range_max_m = Number(scan, "range_max_m", path, line, 20.0);
+    if (!scan.contains("ranges")) throw ParseError(path, line, "scan: missing 'ranges'");
+    s.ranges_m = Values(scan["ranges"], path, line, "scan.ranges");
+    if (scan.contains("reflectance"))
+      s.reflectance = Values(scan["reflectance"], path, line, "scan.reflectance");
+    s.layout.beam_count = s.ranges_m.size();
+    try {
+      s.CheckConsistent();
+    } catch (const std::invalid_argument& e) {
+      throw ParseError(path, line, e.what());
+    }
+    if (record.contains("odometry"))
+      iteration.odometry = ParsePose(record["odometry"], path, line, "odometry");
+    if (record.contains("candidates")) {
+      if (!record["candidates"].is_array())
+        throw ParseError(path, line, "candidates: expected an array of [x_m, y_m, yaw_rad]");
+      for (const auto& c : record["candidates"])
+        iteration.external_candidates.push_back(ParsePose(c, path, line, "candidates"));
+    }
+    truth_.reset();
+    if (record.contains("truth")) truth_ = ParsePose(record["truth"], path, line, "truth");
+    iteration.origin = path + ":" + std::to_string(line);
+    return true;
+  }
+  if (impl_->in.bad()) throw std::runtime_error("error while reading " + path);
+  return false;
+}
+
+struct SequenceFileWriter::Impl {
+  std::string path, temporary;
+  std::ofstream out;
+  bool closed = false;
+};
+
+SequenceFileWriter::SequenceFileWriter(const std::string& path, const LaserMounting& mounting)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->path = path;
+  impl_->temporary = TemporaryPathFor(path);
+  impl_->out.open(impl_->temporary);
+  if (!impl_->out) throw std::runtime_error("cannot write " + path);
+  impl_->out << json{{"scanloc_sequence", 1}, {"mounting", PoseJson(mounting.T_robot_laser)}}.dump()
+             << '\n';
+}
+
+SequenceFileWriter::~SequenceFileWriter() {
+  if (!impl_->closed) {  // abandoned: leave nothing half-written behind
+    impl_->out.close();
+    std::remove(impl_->temporary.c_str());
+  }
+}
+
+void SequenceFileWriter::Write(const Iteration& iteration, const std::optional<Pose2D>& truth) {
+  const LaserScan& s = iteration.scan;
+  json ranges = json::array();
+  for (const double r : s.ranges_m) ranges.push_back(std::isfinite(r) ? json(r) : json(nullptr));
+  json scan = {{"angle_min_rad", s.layout.angle_min_rad},
+               {"angle_increment_rad", s.layout.angle_increment_rad},
+               {"range_min_m", s.layout.range_min_m},
+               {"range_max_m", s.layout.range_max_m},
+               {"ranges", ranges}};
+  if (!s.reflectance.empty()) scan["reflectance"] = s.reflectance;
+  json record = {{"timestamp_s", iteration.timestamp_s}, {"scan", scan}};
+  if (iteration.odometry) record["odometry"] = PoseJson(*iteration.odometry);
+  if (!iteration.external_candidates.empty()) {
+    json candidates = json::array();
+    for (const auto& c : iteration.external_candidates) candidates.push_back(PoseJson(c));
+    record["candidates"] = candidates;
+  }
+  if (truth) record["truth"] = PoseJson(*truth);
+  impl_->out << record.dump() << '\n';
+}
+
+void SequenceFileWriter::Close() {
+  impl_->out.flush();
+  if (!impl_->out) throw std::runtime_error("error while writing " + impl_->path);
+  impl_->out.close();
+  CommitTemporaryFile(impl_->temporary, impl_->path);
+  impl_->closed = true;
+}
+
+std::unique_ptr<IterationSource> OpenIterationSource(const std::string& path,
+                                                     CarmenOptions carmen) {
+  for (const char* suffix : {".clf", ".clf.gz", ".log", ".log.gz"})
+    if (EndsWith(path, suffix)) return std::make_unique<CarmenIterationSource>(path, carmen);
+  return std::make_unique<SequenceFileSource>(path);
+}
+
+}  // namespace scanloc
