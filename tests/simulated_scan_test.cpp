@@ -161,6 +161,49 @@ TEST(SimulateFromPoints, SparseNearPointsOccludeDenseFarPoints) {
   EXPECT_EQ(count_far_within_near_wall(occluding), 0);
 }
 
+TEST(SimulateFromPoints, SurfelsGiveTheWallRangeBetweenSparsePoints) {
+  // A wall at x = 3 sampled every 0.2 m, seen obliquely with 1° beams: a point taken as a disc is
+  // off by up to spacing·tan(incidence), a surfel (point + normal) is exact.
+  PointMap discs(PointMapOptions{0.0, 1.0}), surfels(PointMapOptions{0.0, 1.0});
+  for (double y = 0.0; y <= 6.0 + 1e-9; y += 0.2) {
+    discs.Insert(std::vector<Eigen::Vector2d>{{3.0, y}}, {0.2});
+    surfels.Insert(std::vector<Eigen::Vector2d>{{3.0, y}}, {0.2},
+                   std::vector<Eigen::Vector2d>{{-1.0, 0.0}});
+  }
+  const ScanLayout layout = MakeLayout(181, M_PI, 20.0);
+  const Pose2D pose{0.0, 0.0, 0.0};
+  const SimulatedScan from_discs = SimulateFromPoints(discs, layout, pose);
+  const SimulatedScan from_surfels = SimulateFromPoints(surfels, layout, pose);
+  double worst_disc = 0.0;
+  for (int deg = 20; deg <= 60; ++deg) {
+    const std::size_t k = 90 + deg;
+    const double truth = 3.0 / std::cos(deg * M_PI / 180.0);
+    ASSERT_TRUE(from_surfels.IsValid(k)) << deg;
+    EXPECT_NEAR(from_surfels.ranges_m[k], truth, 1e-9) << deg;
+    worst_disc = std::max(worst_disc, std::abs(from_discs.ranges_m[k] - truth));
+  }
+  EXPECT_GT(worst_disc, 0.05);  // the discs' error this test guards against
+}
+
+TEST(SimulateFromPoints, SurfelsFromAScanReproduceTheScannedWall) {
+  // A point map grown from one scan of a room, simulated again from the same posture, gives the
+  // scan back (the normals come from the neighbouring beams).
+  const LineMap room = testing::RectangleRoom(8.0, 5.0);
+  const ScanLayout layout = MakeLayout(180, M_PI, 20.0);
+  const Pose2D pose{2.0, 1.5, 0.6};
+  const LaserScan scan = testing::ScanFromSimulation(SimulateFromLines(room, layout, pose));
+  PointMap map(PointMapOptions{0.0, 0.3});
+  map.InsertScan(scan, pose);
+  const SimulatedScan again = SimulateFromPoints(map, layout, pose);
+  int close = 0, valid = 0;
+  for (std::size_t k = 0; k < layout.beam_count; ++k) {
+    if (!scan.IsValid(k)) continue;
+    ++valid;
+    close += again.IsValid(k) && std::abs(again.ranges_m[k] - scan.ranges_m[k]) < 1e-6;
+  }
+  EXPECT_GE(close, valid - 4);  // only the beams at the two corners may differ
+}
+
 TEST(SimulateFromPoints, IndexedEqualsBruteForceOnRandomMaps) {
   std::mt19937 rng(2024);
   std::uniform_real_distribution<double> coordinate(-30.0, 30.0), yaw(-M_PI, M_PI);

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <optional>
 #include <unordered_map>
+
+#include <Eigen/Geometry>
 
 // nanoflann 1.4 trips -Wmaybe-uninitialized in its own header when optimised.
 #pragma GCC diagnostic push
@@ -41,6 +44,7 @@ std::int64_t CellKey(const Eigen::Vector2d& p, double cell_size_m) {
 struct PointMap::Storage {
   std::vector<Eigen::Vector2d> points;
   std::vector<double> spacings;
+  std::vector<Eigen::Vector2f> normals;  // float: normals need no more, and maps can be large
   std::unordered_map<std::int64_t, std::uint32_t> occupied_cells;
   CloudAdaptor adaptor{&points};
   KdTree tree{2, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16)};
@@ -60,11 +64,17 @@ PointMap& PointMap::operator=(PointMap&&) noexcept = default;
 std::size_t PointMap::size() const { return storage_->points.size(); }
 const Eigen::Vector2d& PointMap::point(std::size_t i) const { return storage_->points[i]; }
 double PointMap::spacing(std::size_t i) const { return storage_->spacings[i]; }
+Eigen::Vector2d PointMap::normal(std::size_t i) const {
+  return storage_->normals[i].cast<double>();
+}
 
 std::size_t PointMap::Insert(const std::vector<Eigen::Vector2d>& points_world,
-                             const std::vector<double>& spacings_m) {
+                             const std::vector<double>& spacings_m,
+                             const std::vector<Eigen::Vector2d>& normals_world) {
   if (points_world.size() != spacings_m.size())
     throw std::invalid_argument("PointMap::Insert: one spacing per point is required");
+  if (!normals_world.empty() && normals_world.size() != points_world.size())
+    throw std::invalid_argument("PointMap::Insert: no normals, or one normal per point");
   Storage& s = *storage_;
   const std::size_t first_new = s.points.size();
   for (std::size_t i = 0; i < points_world.size(); ++i) {
@@ -83,6 +93,11 @@ std::size_t PointMap::Insert(const std::vector<Eigen::Vector2d>& points_world,
     }
     s.points.push_back(p);
     s.spacings.push_back(spacing);
+    Eigen::Vector2f normal = Eigen::Vector2f::Zero();
+    if (!normals_world.empty() && normals_world[i].allFinite() &&
+        normals_world[i].norm() > 0.5)
+      normal = normals_world[i].normalized().cast<float>();
+    s.normals.push_back(normal);
   }
   if (s.points.size() > first_new)
     s.tree.addPoints(static_cast<std::uint32_t>(first_new),
@@ -95,20 +110,35 @@ bool PointMap::Insert(const Eigen::Vector2d& point_world, double spacing_m) {
 }
 
 std::size_t PointMap::InsertScan(const LaserScan& scan, const Pose2D& T_world_laser) {
-  std::vector<Eigen::Vector2d> points;
+  std::vector<Eigen::Vector2d> points, normals;
   std::vector<double> spacings;
   const std::size_t n = scan.size();
+  const Eigen::Rotation2Dd R_world_laser(T_world_laser.yaw_rad);
   for (std::size_t k = 0; k < n; ++k) {
     if (!scan.IsValid(k)) continue;
     const Eigen::Vector2d p = scan.Point(k);
     double spacing = std::numeric_limits<double>::infinity();
-    if (k > 0 && scan.IsValid(k - 1)) spacing = (scan.Point(k - 1) - p).norm();
-    if (k + 1 < n && scan.IsValid(k + 1)) spacing = std::min(spacing, (scan.Point(k + 1) - p).norm());
+    std::optional<Eigen::Vector2d> before, after;
+    if (k > 0 && scan.IsValid(k - 1)) before = scan.Point(k - 1);
+    if (k + 1 < n && scan.IsValid(k + 1)) after = scan.Point(k + 1);
+    if (before) spacing = (*before - p).norm();
+    if (after) spacing = std::min(spacing, (*after - p).norm());
     if (!std::isfinite(spacing)) spacing = scan.ranges_m[k] * scan.layout.angle_increment_rad;
+    // Neighbours farther than the spacing bound are across a depth jump, not on this surface.
+    if (before && (*before - p).norm() > options_.max_point_spacing_m) before.reset();
+    if (after && (*after - p).norm() > options_.max_point_spacing_m) after.reset();
+    Eigen::Vector2d normal = Eigen::Vector2d::Zero();
+    const Eigen::Vector2d tangent = (after ? *after : p) - (before ? *before : p);
+    if (tangent.norm() > 1e-9) {
+      normal = Eigen::Vector2d(-tangent.y(), tangent.x()).normalized();
+      if (normal.dot(p) > 0.0) normal = -normal;  // facing the laser
+      normal = R_world_laser * normal;
+    }
     points.push_back(T_world_laser.Transform(p));  // (3.6)
     spacings.push_back(spacing);
+    normals.push_back(normal);
   }
-  return Insert(points, spacings);
+  return Insert(points, spacings, normals);
 }
 
 std::vector<std::pair<std::uint32_t, double>> PointMap::RadiusSearch(const Eigen::Vector2d& centre,
@@ -138,8 +168,17 @@ std::vector<std::pair<std::uint32_t, double>> PointMap::KNearest(const Eigen::Ve
 
 PointMap PointMapFromLines(const LineMap& lines, double spacing_m, PointMapOptions options) {
   PointMap map(options);
-  const auto points = SampleLineMap(lines, spacing_m);
-  map.Insert(points, std::vector<double>(points.size(), spacing_m));
+  std::vector<Eigen::Vector2d> points, normals;
+  for (const Segment& segment : lines.segments) {
+    const Eigen::Vector2d d = segment.b - segment.a;
+    const Eigen::Vector2d normal =
+        d.norm() > 1e-12 ? Eigen::Vector2d(-d.y(), d.x()).normalized() : Eigen::Vector2d::Zero();
+    for (const auto& p : SampleLineMap(LineMap{{segment}}, spacing_m)) {
+      points.push_back(p);
+      normals.push_back(normal);
+    }
+  }
+  map.Insert(points, std::vector<double>(points.size(), spacing_m), normals);
   return map;
 }
 

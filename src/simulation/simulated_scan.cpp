@@ -79,9 +79,28 @@ void OfferPoint(SimulatedScan& sim, const PointMap& map, const Pose2D& T_world_l
   const double inc = layout.angle_increment_rad;
   const double half_width = std::min(
       M_PI / 2.0, std::max(0.5 * inc, 0.5 * options.footprint_factor * map.spacing(i) / range));
+  // A point with a known normal is a small piece of surface (a surfel) of half-length
+  // footprint_factor·spacing/2: a beam meets it where it crosses that surface, not at the point's
+  // own range (off by spacing·tan(incidence) with 1° beams on oblique walls), and a beam that
+  // crosses the surface beyond the patch passes by. A point without a normal is a disc.
+  const Eigen::Vector2d normal = map.normal(i);
+  const bool surfel = normal.squaredNorm() > 0.0;
+  const double patch_half_m = std::max(0.5 * options.footprint_factor * map.spacing(i), 1e-3);
   ForEachBeamInInterval(layout, sim.size(), bearing - half_width, 2.0 * half_width,
                         [&](std::size_t beam) {
-                          Offer(sim, beam, range, HitSource::kPoint, static_cast<std::int32_t>(i));
+                          double beam_range = range;
+                          if (surfel) {
+                            const double phi = T_world_laser.yaw_rad + layout.Bearing(beam);
+                            const Eigen::Vector2d u(std::cos(phi), std::sin(phi));
+                            const double cos_incidence = normal.dot(u);
+                            if (std::abs(cos_incidence) > 0.1) {
+                              const double t = normal.dot(delta) / cos_incidence;
+                              if (!(t > 0.0) || (t * u - delta).norm() > patch_half_m) return;
+                              beam_range = t;
+                            }
+                          }
+                          Offer(sim, beam, beam_range, HitSource::kPoint,
+                                static_cast<std::int32_t>(i));
                         });
 }
 

@@ -35,17 +35,23 @@ class PointMap {
   // Inserts one point sampling a surface with the given local spacing; returns false when its cell
   // is taken (the kept point then records the smaller of the two spacings).
   bool Insert(const Eigen::Vector2d& point_world, double spacing_m);
-  // Inserts many points at once (one index update); returns how many were added.
+  // Inserts many points at once (one index update); returns how many were added. `normals_world`
+  // is empty (unknown) or holds one unit normal of the sampled surface per point (zero: unknown).
   std::size_t Insert(const std::vector<Eigen::Vector2d>& points_world,
-                     const std::vector<double>& spacings_m);
+                     const std::vector<double>& spacings_m,
+                     const std::vector<Eigen::Vector2d>& normals_world = {});
   // (3.6) Inserts the valid beams of a scan taken from T_world_laser; each point's spacing is the
-  // distance to its nearest valid neighbouring beam (r·Δθ when it has none). Returns points added.
+  // distance to its nearest valid neighbouring beam (r·Δθ when it has none) and its normal is
+  // perpendicular to the line through its neighbouring beams' points (unknown at depth jumps).
+  // Returns points added.
   std::size_t InsertScan(const LaserScan& scan, const Pose2D& T_world_laser);
 
   std::size_t size() const;
   bool empty() const { return size() == 0; }
   const Eigen::Vector2d& point(std::size_t i) const;
   double spacing(std::size_t i) const;
+  // The unit normal of the surface point i samples, or zero when unknown.
+  Eigen::Vector2d normal(std::size_t i) const;
   const PointMapOptions& options() const { return options_; }
 
   // Indices of points within radius_m of the centre, with squared distances (unsorted).

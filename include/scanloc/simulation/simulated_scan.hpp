@@ -37,7 +37,7 @@ struct PointSimulationOptions {
   // A map point hides the beams within ±(footprint_factor · spacing / 2) / range of its bearing,
   // where spacing is the point's local spacing: a sampled surface then occludes what lies behind
   // it instead of letting far points show through its gaps. 0 gives the chapter's (3.7) binning.
-  double footprint_factor = 1.5;
+  double footprint_factor = 1.0;
 };
 
 // (3.1)–(3.5) Ray–segment intersection for every beam, nearest kept (occlusion).
