@@ -204,15 +204,19 @@ TEST(SimulateFromPoints, SurfelsFromAScanReproduceTheScannedWall) {
   EXPECT_GE(close, valid - 4);  // only the beams at the two corners may differ
 }
 
-TEST(SimulateFromPoints, IndexedEqualsBruteForceOnRandomMaps) {
+TEST(SimulateFromPoints, IndexedEqualsBruteForceOnRandomMapsOfDiscsAndSurfels) {
   std::mt19937 rng(2024);
   std::uniform_real_distribution<double> coordinate(-30.0, 30.0), yaw(-M_PI, M_PI);
   const ScanLayout layout = MakeLayout(1000, 2.0 * M_PI, 20.0);
   for (const int size : {1, 100, 5000, 50000}) {
     PointMap map(PointMapOptions{0.0, 0.3});
-    std::vector<Eigen::Vector2d> points;
-    for (int i = 0; i < size; ++i) points.emplace_back(coordinate(rng), coordinate(rng));
-    map.Insert(points, std::vector<double>(points.size(), 0.05));
+    std::vector<Eigen::Vector2d> points, normals;
+    for (int i = 0; i < size; ++i) {
+      points.emplace_back(coordinate(rng), coordinate(rng));
+      const double a = yaw(rng);  // every other point a surfel, the others discs
+      normals.push_back(i % 2 ? Eigen::Vector2d(std::cos(a), std::sin(a)) : Eigen::Vector2d::Zero());
+    }
+    map.Insert(points, std::vector<double>(points.size(), 0.05), normals);
     for (int trial = 0; trial < 5; ++trial) {
       const Pose2D pose{coordinate(rng) / 2, coordinate(rng) / 2, yaw(rng)};
       const SimulatedScan a = SimulateFromPoints(map, layout, pose);

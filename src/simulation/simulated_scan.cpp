@@ -141,9 +141,26 @@ SimulatedScan SimulateFromPoints(const PointMap& map, const ScanLayout& layout,
                                  const Pose2D& T_world_laser,
                                  const PointSimulationOptions& options) {
   SimulatedScan sim = EmptySimulation(layout);
-  for (const auto& [index, squared_distance] :
-       map.RadiusSearch(T_world_laser.Translation(), layout.range_max_m))
-    OfferPoint(sim, map, T_world_laser, options, index);
+  // Nearest ring first, doubling: once every beam holds a hit nearer than anything beyond the ring
+  // could offer (a point at distance d offers no range below d minus its patch), the farther
+  // points cannot change the scan. The result equals the brute force; in closed rooms only the
+  // first ring is searched.
+  const double patch_margin_m = 0.5 * options.footprint_factor * map.options().max_point_spacing_m;
+  const double max_range_m = layout.range_max_m;
+  double inner_m = 0.0;
+  for (double radius_m = std::min(max_range_m, 4.0);; radius_m = std::min(max_range_m, 2 * radius_m)) {
+    const double inner2 = inner_m * inner_m;
+    for (const auto& [index, squared_distance] :
+         map.RadiusSearch(T_world_laser.Translation(), radius_m))
+      if (squared_distance >= inner2) OfferPoint(sim, map, T_world_laser, options, index);
+    if (radius_m >= max_range_m) break;
+    const double settled_m = radius_m - patch_margin_m;
+    bool settled = true;
+    for (std::size_t k = 0; k < sim.size() && settled; ++k)
+      settled = sim.IsValid(k) && sim.ranges_m[k] <= settled_m;
+    if (settled) break;
+    inner_m = radius_m;
+  }
   return sim;
 }
 
