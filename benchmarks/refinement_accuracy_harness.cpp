@@ -12,44 +12,17 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <map>
 #include <random>
 #include <string>
 #include <vector>
 
-#include "scanloc/io/carmen_log.hpp"
-#include "scanloc/io/trajectory.hpp"
+#include "scanloc/io/corrected_scans.hpp"
 #include "scanloc/maps/point_map.hpp"
 #include "scanloc/refinement/refiner.hpp"
 
 namespace {
 
 using namespace scanloc;
-
-struct Sample {
-  LaserScan scan;
-  Pose2D T_world_laser;  // corrected
-};
-
-// The scans of a log whose timestamps have a corrected pose, in file order.
-std::vector<Sample> LoadCorrectedScans(const std::string& log, const std::string& poses) {
-  std::map<long long, Pose2D> corrected;  // keyed by timestamp in 10 µs ticks
-  for (const auto& p : ReadCorrectedPoses(poses))
-    corrected[std::llround(p.timestamp_s * 1e5)] = p.pose;
-  CarmenReader reader(log);
-  std::vector<Sample> samples;
-  CarmenRecord record;
-  while (reader.Next(record)) {
-    if (record.kind != CarmenRecord::Kind::kLaser) continue;
-    const long long tick = std::llround(record.timestamp_s * 1e5);
-    for (const long long t : {tick, tick - 1, tick + 1})
-      if (const auto it = corrected.find(t); it != corrected.end()) {
-        samples.push_back({record.scan, reader.mounting().LaserPose(it->second)});
-        break;
-      }
-  }
-  return samples;
-}
 
 struct MethodSpec {
   std::string name;
@@ -125,15 +98,15 @@ int main(int argc, char** argv) {
   std::printf("| log | method | success | median error [mm] | median error [mrad] | median time "
               "[ms] | mean time [ms] | converged |\n|---|---|---|---|---|---|---|---|\n");
   for (const std::string name : {"intel", "aces", "fr079"}) {
-    const auto samples = LoadCorrectedScans(datasets + "/" + name + ".clf.gz",
+    const auto samples = ReadCorrectedScans(datasets + "/" + name + ".clf.gz",
                                             datasets + "/" + name + ".corrected-poses.txt");
     PointMap map;  // default de-duplication cell (0.05 m)
-    std::vector<const Sample*> held_out;
+    std::vector<const CorrectedScan*> held_out;
     for (std::size_t i = 0; i < samples.size(); ++i) {
       if (i % 2 == 0) map.InsertScan(samples[i].scan, samples[i].T_world_laser);
       else held_out.push_back(&samples[i]);
     }
-    std::vector<const Sample*> tests;
+    std::vector<const CorrectedScan*> tests;
     const std::size_t n = std::min<std::size_t>(scans_per_dataset, held_out.size());
     for (std::size_t i = 0; i < n; ++i) tests.push_back(held_out[i * held_out.size() / n]);
     std::fprintf(stderr, "%s: %zu corrected scans, map of %zu points, %zu test scans\n",
@@ -141,7 +114,7 @@ int main(int argc, char** argv) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> direction(-M_PI, M_PI);
     std::vector<Pose2D> starts;
-    for (const Sample* s : tests) {
+    for (const CorrectedScan* s : tests) {
       const double a = direction(rng);
       const double yaw = (direction(rng) >= 0.0 ? 1.0 : -1.0) * offset_rad;
       starts.push_back({s->T_world_laser.x_m + offset_m * std::cos(a),

@@ -58,7 +58,7 @@ std::vector<Candidate> Session::MakeCandidates(const Pose2D& prediction,
                                                const Iteration& iteration) const {
   std::vector<Candidate> candidates{{prediction, "odometry"}};
   const int steps = static_cast<int>(
-      std::floor(options_.heading_spread_rad / options_.heading_step_rad + 1e-9));
+      std::floor(options_.heading_spread_rad / options_.heading_step_rad + 1e-3));
   for (int s = 1; s <= steps; ++s)
     for (const int sign : {-1, 1}) {
       const double offset = sign * s * options_.heading_step_rad;
@@ -127,9 +127,10 @@ IterationRecord Session::Process(const Iteration& iteration) {
     const CandidateRanking ranking = RankCandidates({record.refinement->test_after}, validation_);
     record.verdict = ranking.candidates[0].verdict;
     record.validated = record.verdict == Verdict::kValid;
-    record.T_world_robot = mounting_.RobotPose(record.refinement->T_world_laser);
-    if (!record.validated && record.refinement->test_after.valid_pairs == 0)
-      record.T_world_robot = prediction;  // nothing seen: the refinement had nothing to say
+    // A posture the rules do not validate is not trusted over the odometry: the prediction is
+    // kept (flagged), so that one bad fit cannot throw the session off.
+    record.T_world_robot =
+        record.validated ? mounting_.RobotPose(record.refinement->T_world_laser) : prediction;
     if (iteration.odometry) last_localised_odometry_ = *iteration.odometry;
   }
 

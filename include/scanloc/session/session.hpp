@@ -3,6 +3,7 @@
 // (candidates from the odometry prediction across the heading uncertainty, Likelihood Test,
 // Ceres refinement, validation by the rules), and a validated scan extends the point map (3.6).
 
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -19,8 +20,8 @@ namespace scanloc {
 struct SessionOptions {
   // Candidates: the odometry prediction turned by every multiple of heading_step_rad up to
   // ±heading_spread_rad (in fast in-place turns the odometry heading is off by 3–6° per scan).
-  double heading_spread_rad = 0.1745;  // 10°
-  double heading_step_rad = 0.0873;    // 5°
+  double heading_spread_rad = M_PI / 18.0;  // 10°
+  double heading_step_rad = M_PI / 36.0;    // 5°
   // A scan is localised only when the odometry moved more than this since the last localised
   // one; the others get the odometry prediction (their posture is still recorded).
   double localise_translation_m = 0.05;
