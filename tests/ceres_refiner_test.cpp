@@ -170,6 +170,22 @@ TEST(RefineCeres, EmptyMapAndAllInvalidScanAreReportedNotCrashed) {
   EXPECT_TRUE(on_blind.degenerate);
 }
 
+TEST(RefineCeres, WithoutInitialScoringOnAPointMapGivesTheSamePosture) {
+  const LineMap lines = Classroom();
+  const PointMap points = PointMapFromLines(lines, 0.0075);
+  const Pose2D truth{3.0, 4.0, 1.0};
+  const LaserScan scan = Observe(lines, truth, 0.01, 8);
+  CeresRefinerOptions quiet;
+  quiet.score_initial = false;
+  const Pose2D start = truth * Pose2D{0.1, -0.1, 0.05};
+  const RefinementResult a = RefineCeres(MapView{nullptr, &points}, scan, start, {}, quiet);
+  const RefinementResult b = RefineCeres(MapView{nullptr, &points}, scan, start, {});
+  EXPECT_EQ(a.test_before.valid_pairs, 0);  // not scored
+  EXPECT_GT(b.test_before.valid_pairs, 0);
+  EXPECT_DOUBLE_EQ(a.T_world_laser.x_m, b.T_world_laser.x_m);
+  EXPECT_DOUBLE_EQ(a.T_world_laser.yaw_rad, b.T_world_laser.yaw_rad);
+}
+
 TEST(CeresRefinerOptions, AbsurdValuesAreRefused) {
   CeresRefinerOptions options;
   options.max_outer_iterations = 0;

@@ -155,6 +155,7 @@ void ApplyJson(const json& root, Config& c) {
   auto session = top.Child("session");
   session.Field("heading_spread_rad", c.session.heading_spread_rad)
       .Field("heading_step_rad", c.session.heading_step_rad)
+      .Field("heading_candidates_min_turn_rad", c.session.heading_candidates_min_turn_rad)
       .Field("localise_translation_m", c.session.localise_translation_m)
       .Field("localise_rotation_rad", c.session.localise_rotation_rad)
       .Field("insert_translation_m", c.session.insert_translation_m)
@@ -233,6 +234,7 @@ json ToJson(const Config& c) {
       {"session",
        {{"heading_spread_rad", c.session.heading_spread_rad},
         {"heading_step_rad", c.session.heading_step_rad},
+        {"heading_candidates_min_turn_rad", c.session.heading_candidates_min_turn_rad},
         {"localise_translation_m", c.session.localise_translation_m},
         {"localise_rotation_rad", c.session.localise_rotation_rad},
         {"insert_translation_m", c.session.insert_translation_m},

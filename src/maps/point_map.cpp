@@ -41,12 +41,20 @@ std::int64_t CellKey(const Eigen::Vector2d& p, double cell_size_m) {
 
 }  // namespace
 
+// A cell's point is the running mean of the samples that fell in it, so that the noise of many
+// scans averages out instead of piling up (the nearest of a thick noisy cloud would bias every
+// simulated range short). The k-d tree keeps each point's first sample (`indexed`), which stays
+// within one cell diagonal of the mean: searches widen by that margin and filter on the means.
+constexpr int kMaxMergedSamples = 50;  // then a moving average: the map still follows changes
+
 struct PointMap::Storage {
-  std::vector<Eigen::Vector2d> points;
+  std::vector<Eigen::Vector2d> points;   // cell means
+  std::vector<Eigen::Vector2d> indexed;  // first samples, what the k-d tree holds
   std::vector<double> spacings;
   std::vector<Eigen::Vector2f> normals;  // float: normals need no more, and maps can be large
+  std::vector<std::uint16_t> samples;    // samples merged into each point (capped)
   std::unordered_map<std::int64_t, std::uint32_t> occupied_cells;
-  CloudAdaptor adaptor{&points};
+  CloudAdaptor adaptor{&indexed};
   KdTree tree{2, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16)};
 };
 
@@ -71,6 +79,18 @@ Eigen::Vector2d PointMap::normal(std::size_t i) const {
 std::size_t PointMap::Insert(const std::vector<Eigen::Vector2d>& points_world,
                              const std::vector<double>& spacings_m,
                              const std::vector<Eigen::Vector2d>& normals_world) {
+  return Add(points_world, spacings_m, normals_world, true);
+}
+
+std::size_t PointMap::Restore(const std::vector<Eigen::Vector2d>& points_world,
+                              const std::vector<double>& spacings_m,
+                              const std::vector<Eigen::Vector2d>& normals_world) {
+  return Add(points_world, spacings_m, normals_world, false);
+}
+
+std::size_t PointMap::Add(const std::vector<Eigen::Vector2d>& points_world,
+                          const std::vector<double>& spacings_m,
+                          const std::vector<Eigen::Vector2d>& normals_world, bool merge) {
   if (points_world.size() != spacings_m.size())
     throw std::invalid_argument("PointMap::Insert: one spacing per point is required");
   if (!normals_world.empty() && normals_world.size() != points_world.size())
@@ -83,21 +103,58 @@ std::size_t PointMap::Insert(const std::vector<Eigen::Vector2d>& points_world,
     // After de-duplication the gap between kept points is at least one cell.
     const double spacing = std::clamp(std::max(spacings_m[i], options_.cell_size_m), 0.0,
                                       options_.max_point_spacing_m);
-    if (options_.cell_size_m > 0.0) {
-      const auto [it, inserted] =
-          s.occupied_cells.emplace(CellKey(p, options_.cell_size_m), s.points.size());
-      if (!inserted) {
-        s.spacings[it->second] = std::min(s.spacings[it->second], spacing);
-        continue;
-      }
+    // The sample joins the point whose first sample is nearest, if within one cell diagonal
+    // (looked up in the 3×3 cells around): a noisy wall then stays one layer of points thick.
+    bool inserted_new = true;
+    std::uint32_t existing = 0;
+    if (options_.cell_size_m > 0.0 && !merge) {
+      s.occupied_cells.emplace(CellKey(p, options_.cell_size_m),
+                               static_cast<std::uint32_t>(s.points.size()));
+    } else if (options_.cell_size_m > 0.0) {
+      const double c = options_.cell_size_m;
+      const double reach2 = 2.0 * c * c;
+      double nearest2 = std::numeric_limits<double>::infinity();
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy) {
+          const auto it = s.occupied_cells.find(CellKey(p + Eigen::Vector2d(dx * c, dy * c), c));
+          if (it == s.occupied_cells.end()) continue;
+          const double d2 = (s.indexed[it->second] - p).squaredNorm();
+          if (d2 < nearest2 && (d2 < reach2 || (dx == 0 && dy == 0))) {
+            nearest2 = d2;
+            existing = it->second;
+            inserted_new = false;
+          }
+        }
+      if (inserted_new)
+        s.occupied_cells.emplace(CellKey(p, c), static_cast<std::uint32_t>(s.points.size()));
     }
-    s.points.push_back(p);
-    s.spacings.push_back(spacing);
     Eigen::Vector2f normal = Eigen::Vector2f::Zero();
     if (!normals_world.empty() && normals_world[i].allFinite() &&
         normals_world[i].norm() > 0.5)
       normal = normals_world[i].normalized().cast<float>();
+    if (options_.cell_size_m > 0.0 && !inserted_new) {
+      const std::uint32_t j = existing;
+      s.spacings[j] = std::min(s.spacings[j], spacing);
+      if (s.samples[j] < kMaxMergedSamples) ++s.samples[j];
+      const double weight = 1.0 / s.samples[j];
+      s.points[j] += weight * (p - s.points[j]);
+      if (normal.squaredNorm() > 0.0) {
+        Eigen::Vector2f& n = s.normals[j];
+        if (n.squaredNorm() == 0.0f) {
+          n = normal;
+        } else {
+          const Eigen::Vector2f aligned = n.dot(normal) < 0.0f ? -normal : normal;
+          const Eigen::Vector2f mean = n + static_cast<float>(weight) * (aligned - n);
+          if (mean.squaredNorm() > 1e-6f) n = mean.normalized();
+        }
+      }
+      continue;
+    }
+    s.points.push_back(p);
+    s.indexed.push_back(p);
+    s.spacings.push_back(spacing);
     s.normals.push_back(normal);
+    s.samples.push_back(1);
   }
   if (s.points.size() > first_new)
     s.tree.addPoints(static_cast<std::uint32_t>(first_new),
@@ -141,13 +198,24 @@ std::size_t PointMap::InsertScan(const LaserScan& scan, const Pose2D& T_world_la
   return Insert(points, spacings, normals);
 }
 
+double PointMap::MaxIndexDisplacement() const { return options_.cell_size_m * std::sqrt(2.0); }
+
 std::vector<std::pair<std::uint32_t, double>> PointMap::RadiusSearch(const Eigen::Vector2d& centre,
                                                                      double radius_m) const {
   std::vector<std::pair<std::uint32_t, double>> found;
   if (empty() || !(radius_m > 0.0)) return found;
-  nanoflann::RadiusResultSet<double, std::uint32_t> result(radius_m * radius_m, found);
+  const double widened = radius_m + MaxIndexDisplacement();
+  nanoflann::RadiusResultSet<double, std::uint32_t> result(widened * widened, found);
   const double query[2] = {centre.x(), centre.y()};
   storage_->tree.findNeighbors(result, query, nanoflann::SearchParams(32, 0.0f, false));
+  // Distances to the cell means, and only those within the radius.
+  const double radius2 = radius_m * radius_m;
+  std::size_t kept = 0;
+  for (const auto& [index, unused] : found) {
+    const double d2 = (storage_->points[index] - centre).squaredNorm();
+    if (d2 < radius2) found[kept++] = {index, d2};
+  }
+  found.resize(kept);
   return found;
 }
 
@@ -162,7 +230,19 @@ std::vector<std::pair<std::uint32_t, double>> PointMap::KNearest(const Eigen::Ve
   result.init(indices.data(), distances.data());
   const double query[2] = {centre.x(), centre.y()};
   storage_->tree.findNeighbors(result, query, nanoflann::SearchParams());
-  for (std::size_t i = 0; i < result.size(); ++i) found.emplace_back(indices[i], distances[i]);
+  if (MaxIndexDisplacement() == 0.0) {
+    for (std::size_t i = 0; i < result.size(); ++i) found.emplace_back(indices[i], distances[i]);
+    return found;
+  }
+  // The tree ranks first samples; a cell mean is at most one displacement δ away from its first
+  // sample, so every mean nearer than the k-th found one lies within d_k + 2δ of the first samples.
+  double d_k = 0.0;
+  for (std::size_t i = 0; i < result.size(); ++i) d_k = std::max(d_k, std::sqrt(distances[i]));
+  found = RadiusSearch(centre, d_k + 2.0 * MaxIndexDisplacement());
+  const std::size_t keep = std::min(k, found.size());
+  std::partial_sort(found.begin(), found.begin() + keep, found.end(),
+                    [](const auto& a, const auto& b) { return a.second < b.second; });
+  found.resize(keep);
   return found;
 }
 

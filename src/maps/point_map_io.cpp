@@ -232,7 +232,8 @@ PointMapPcdLoad LoadPointMapPcdWithReport(const std::string& path, PointMapOptio
     if (normal_x && normal_y) normal = {(*normal_x)(i), (*normal_y)(i)};
     normals.push_back(normal.allFinite() ? normal : Eigen::Vector2d::Zero());
   }
-  load.points_merged = points.size() - load.map.Insert(points, spacings_m, normals);
+  // A saved map comes back point for point: its points are cell means already.
+  load.points_merged = points.size() - load.map.Restore(points, spacings_m, normals);
   return load;
 }
 

@@ -102,10 +102,12 @@ bool FitPointLine(const PointMap& points, const Eigen::Vector2d& hit,
   return true;
 }
 
+// `sim_valid`: the simulated scan exists and beam has a hit there.
 bool SurfaceLineOfBeam(const MapView& map, const SimulatedScan& sim, std::size_t beam,
-                       const Eigen::Vector2d& hit, const Eigen::Vector2d& end_point,
-                       const CeresRefinerOptions& options, SurfaceLine& line) {
-  if (sim.IsValid(beam) && sim.hit_source[beam] == HitSource::kSegment) {
+                       bool sim_valid, const Eigen::Vector2d& hit,
+                       const Eigen::Vector2d& end_point, const CeresRefinerOptions& options,
+                       SurfaceLine& line) {
+  if (sim_valid && sim.hit_source[beam] == HitSource::kSegment) {
     const Segment& s = map.lines->segments[sim.hit_index[beam]];
     const Eigen::Vector2d d = s.b - s.a;
     if (d.norm() < 1e-9) return false;
@@ -116,7 +118,7 @@ bool SurfaceLineOfBeam(const MapView& map, const SimulatedScan& sim, std::size_t
   if (map.points == nullptr || map.points->empty()) return false;
   if (options.point_association == PointAssociation::kNearestEndpoint)
     return FitPointLine(*map.points, end_point, options, line);
-  return sim.IsValid(beam) && FitPointLine(*map.points, hit, options, line);
+  return sim_valid && FitPointLine(*map.points, hit, options, line);
 }
 
 struct BuiltProblem {
@@ -138,18 +140,21 @@ BuiltProblem BuildProblem(const MapView& map, const LaserScan& scan, const Pose2
   const bool cosine = options.incidence == IncidenceWeighting::kCosine;
   const bool nearest = options.point_association == PointAssociation::kNearestEndpoint &&
                        map.points != nullptr && !map.points->empty();
+  // Without a simulated scan (nearest pairing on a point map needs none) no beam has a hit.
+  const bool have_sim = sim.size() == scan.size();
   for (std::size_t k = 0; k < scan.size(); ++k) {
     if (!scan.IsValid(k)) continue;
+    const bool sim_valid = have_sim && sim.IsValid(k);
     // Pairs that the Likelihood Test would not count as matches are left out (T_Map's role).
-    if (!(sim.IsValid(k) && std::abs(scan.ranges_m[k] - sim.ranges_m[k]) <= max_residual) &&
-        !nearest)
+    if (!(sim_valid && std::abs(scan.ranges_m[k] - sim.ranges_m[k]) <= max_residual) && !nearest)
       continue;
     const double phi = pose.yaw_rad + scan.layout.Bearing(k);
     const Eigen::Vector2d u(std::cos(phi), std::sin(phi));
     const Eigen::Vector2d end_point = pose.Translation() + scan.ranges_m[k] * u;
-    const Eigen::Vector2d hit = pose.Translation() + sim.ranges_m[k] * u;
+    const Eigen::Vector2d hit =
+        pose.Translation() + (sim_valid ? sim.ranges_m[k] : scan.ranges_m[k]) * u;
     SurfaceLine line;
-    if (!SurfaceLineOfBeam(map, sim, k, hit, end_point, options, line)) continue;
+    if (!SurfaceLineOfBeam(map, sim, k, sim_valid, hit, end_point, options, line)) continue;
     if (std::abs(line.normal.dot(end_point) - line.offset) > max_residual) continue;
     const double cos_incidence = std::abs(line.normal.dot(u));
     // Beams that slide along their surface carry no information (and a plain range residual is
@@ -272,14 +277,17 @@ RefinementResult RefineCeres(const MapView& map, const LaserScan& scan,
   scan.CheckConsistent();
   const auto start = std::chrono::steady_clock::now();
   RefinementResult result;
-  PostureScore score = ScorePosture(map, scan, T_world_laser_initial, scoring);
-  result.test_before = score.test;
-  result.distance_before = score.distance;
+  PostureScore score;
+  const bool needs_simulation = (map.lines != nullptr && !map.lines->empty()) ||
+                                options.point_association == PointAssociation::kSimulatedHit;
+  if (options.score_initial || needs_simulation) {
+    score = ScorePosture(map, scan, T_world_laser_initial, scoring);
+    result.test_before = score.test;
+    result.distance_before = score.distance;
+  }
   Pose2D pose = T_world_laser_initial;
   // With nearest-end-point pairing on a point-only map, correspondences need no simulated scan:
   // the scan is simulated only to score the postures before and after.
-  const bool needs_simulation = (map.lines != nullptr && !map.lines->empty()) ||
-                                options.point_association == PointAssociation::kSimulatedHit;
   SimulatedScan simulated = score.simulated;
   BuiltProblem built;
   for (int outer = 0; outer < options.max_outer_iterations; ++outer) {

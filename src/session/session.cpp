@@ -21,6 +21,7 @@ void SessionOptions::Validate() const {
   };
   require(heading_spread_rad >= 0.0 && heading_spread_rad < M_PI, "heading_spread_rad in [0, π)");
   require(heading_step_rad > 0.0, "heading_step_rad must be positive");
+  require(heading_candidates_min_turn_rad >= 0.0, "heading_candidates_min_turn_rad must be >= 0");
   require(heading_spread_rad / heading_step_rad <= 100.0, "at most 100 heading steps per side");
   require(localise_translation_m >= 0.0 && localise_rotation_rad >= 0.0,
           "localise thresholds must be >= 0");
@@ -55,9 +56,9 @@ bool Session::MovedMoreThan(const Pose2D& from, const Pose2D& to, double transla
 }
 
 std::vector<Candidate> Session::MakeCandidates(const Pose2D& prediction,
-                                               const Iteration& iteration) const {
+                                               const Iteration& iteration, bool turning) const {
   std::vector<Candidate> candidates{{prediction, "odometry"}};
-  const int steps = static_cast<int>(
+  const int steps = !turning ? 0 : static_cast<int>(
       std::floor(options_.heading_spread_rad / options_.heading_step_rad + 1e-3));
   for (int s = 1; s <= steps; ++s)
     for (const int sign : {-1, 1}) {
@@ -105,8 +106,13 @@ IterationRecord Session::Process(const Iteration& iteration) {
     record.validated = false;
   } else {
     const auto evaluate_start = std::chrono::steady_clock::now();
-    record.candidates = EvaluateCandidates(map, iteration.scan, MakeCandidates(prediction, iteration),
-                                           mounting_, scoring_, validation_);
+    const bool turning =
+        !iteration.odometry ||
+        std::abs(Between(last_localised_odometry_, *iteration.odometry).yaw_rad) >
+            options_.heading_candidates_min_turn_rad;
+    record.candidates = EvaluateCandidates(
+        map, iteration.scan, MakeCandidates(prediction, iteration, turning), mounting_, scoring_,
+        validation_);
     record.evaluate_s = SecondsSince(evaluate_start);
     // The best valid candidate; when none is valid, the cheapest by (3.11), flagged below.
     record.chosen = record.candidates.best;
@@ -121,7 +127,11 @@ IterationRecord Session::Process(const Iteration& iteration) {
     if (record.chosen < 0) record.chosen = 0;  // no valid pair anywhere: keep the prediction
     const auto refine_start = std::chrono::steady_clock::now();
     const CandidateEvaluation& chosen = record.candidates.candidates[record.chosen];
-    record.refinement = Refine(map, iteration.scan, chosen.T_world_laser, scoring_, refiner_);
+    RefinerOptions refiner = refiner_;
+    refiner.ceres.score_initial = false;  // the candidate evaluation scored it already
+    record.refinement = Refine(map, iteration.scan, chosen.T_world_laser, scoring_, refiner);
+    record.refinement->test_before = chosen.test;
+    record.refinement->distance_before = chosen.distance;
     record.refine_s = SecondsSince(refine_start);
     // The refined posture must pass rules 1 and 2 on its own.
     const CandidateRanking ranking = RankCandidates({record.refinement->test_after}, validation_);

@@ -32,14 +32,22 @@ class PointMap {
   PointMap(const PointMap&) = delete;
   PointMap& operator=(const PointMap&) = delete;
 
-  // Inserts one point sampling a surface with the given local spacing; returns false when its cell
-  // is taken (the kept point then records the smaller of the two spacings).
+  // Inserts one point sampling a surface with the given local spacing. De-duplication: when an
+  // existing point's first sample lies within one cell diagonal (cell_size_m·√2), the sample is
+  // merged into the nearest such point, which becomes the mean of its samples (normal: the mean
+  // normal; spacing: the smaller), and false is returned. Repeated noisy scans of a wall then
+  // average out into one layer of points instead of piling up in front of it.
   bool Insert(const Eigen::Vector2d& point_world, double spacing_m);
   // Inserts many points at once (one index update); returns how many were added. `normals_world`
   // is empty (unknown) or holds one unit normal of the sampled surface per point (zero: unknown).
   std::size_t Insert(const std::vector<Eigen::Vector2d>& points_world,
                      const std::vector<double>& spacings_m,
                      const std::vector<Eigen::Vector2d>& normals_world = {});
+  // Adds points as they are, merging none (their cells are registered for later samples): how a
+  // saved map is restored point for point. Returns how many were added (non-finite ones are not).
+  std::size_t Restore(const std::vector<Eigen::Vector2d>& points_world,
+                      const std::vector<double>& spacings_m,
+                      const std::vector<Eigen::Vector2d>& normals_world = {});
   // (3.6) Inserts the valid beams of a scan taken from T_world_laser; each point's spacing is the
   // distance to its nearest valid neighbouring beam (r·Δθ when it has none) and its normal is
   // perpendicular to the line through its neighbouring beams' points (unknown at depth jumps).
@@ -54,14 +62,20 @@ class PointMap {
   Eigen::Vector2d normal(std::size_t i) const;
   const PointMapOptions& options() const { return options_; }
 
-  // Indices of points within radius_m of the centre, with squared distances (unsorted).
+  // Indices of points within radius_m of the centre, with squared distances (unsorted). Exact
+  // with respect to point(i), the cell means.
   std::vector<std::pair<std::uint32_t, double>> RadiusSearch(const Eigen::Vector2d& centre,
                                                              double radius_m) const;
-  // The k nearest points, nearest first, with squared distances.
+  // The k nearest points, nearest first, with squared distances (exact, as RadiusSearch).
   std::vector<std::pair<std::uint32_t, double>> KNearest(const Eigen::Vector2d& centre,
                                                          std::size_t k) const;
 
  private:
+  // How far a cell mean may lie from the first sample the k-d tree indexes (one cell diagonal).
+  double MaxIndexDisplacement() const;
+  std::size_t Add(const std::vector<Eigen::Vector2d>& points_world,
+                  const std::vector<double>& spacings_m,
+                  const std::vector<Eigen::Vector2d>& normals_world, bool merge);
   struct Storage;
   PointMapOptions options_;
   std::unique_ptr<Storage> storage_;

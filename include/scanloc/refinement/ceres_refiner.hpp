@@ -50,6 +50,9 @@ struct CeresRefinerOptions {
   // Degenerate when the weakest direction of the information matrix (rotation scaled by the
   // median range) carries less than this fraction of the strongest.
   double degeneracy_ratio = 0.01;
+  // Score the initial posture (a simulated scan and both tests); callers that already did may
+  // turn it off, and test_before / distance_before are then left empty.
+  bool score_initial = true;
   void Validate() const;
 };
 

@@ -22,6 +22,9 @@ struct SessionOptions {
   // ±heading_spread_rad (in fast in-place turns the odometry heading is off by 3–6° per scan).
   double heading_spread_rad = M_PI / 18.0;  // 10°
   double heading_step_rad = M_PI / 36.0;    // 5°
+  // The turned candidates are tried only when the odometry turned more than this since the last
+  // localised scan (the heading slips in turns); otherwise the prediction alone is tested.
+  double heading_candidates_min_turn_rad = 0.0;
   // A scan is localised only when the odometry moved more than this since the last localised
   // one; the others get the odometry prediction (their posture is still recorded).
   double localise_translation_m = 0.05;
@@ -69,7 +72,8 @@ class Session {
   std::size_t iterations() const { return count_; }
 
  private:
-  std::vector<Candidate> MakeCandidates(const Pose2D& prediction, const Iteration& iteration) const;
+  std::vector<Candidate> MakeCandidates(const Pose2D& prediction, const Iteration& iteration,
+                                        bool turning) const;
   bool MovedMoreThan(const Pose2D& from, const Pose2D& to, double translation_m,
                      double rotation_rad) const;
 
