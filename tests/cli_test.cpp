@@ -308,6 +308,17 @@ TEST_F(CliTest, SimulateScanWithTheSameSeedIsByteIdentical) {
   EXPECT_NE(simulate("c.scan", "43"), first) << "another seed draws other noise";
 }
 
+TEST_F(CliTest, ShippedClassroomScanRegeneratesByteForByte) {
+  // The command in datasets/README.md: the shipped scan must be what the code makes today.
+  const std::string out = dir_ + "/scan.scan";
+  const RunResult r = Run({"simulate-scan", "--world", kMap,
+                           std::string(SCANLOC_SOURCE_DIR) + "/datasets/classroom/clutter.lines",
+                           "--pose", "1.126", "3.112", "0.0463", "--seed", "7", "--body-sector",
+                           "2.7", "3.1416", "--dropout", "0.02", "--out", out});
+  ASSERT_TRUE(r.exited && r.exit_code == 0) << r;
+  EXPECT_EQ(ReadText(out), ReadText(kScan));
+}
+
 TEST_F(CliTest, SimulateScanIntoMissingDirectoryFailsCleanly) {
   ExpectCleanFailure(Run({"simulate-scan", "--world", kMap, "--pose", "1", "1", "0", "--out",
                           dir_ + "/no/such/dir/x.scan"}),
