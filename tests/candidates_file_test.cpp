@@ -15,16 +15,10 @@
 namespace scanloc {
 namespace {
 
-class CandidatesFileTest : public ::testing::Test {
+class CandidatesFileTest : public testing::TemporaryDirTest {
  protected:
-  void SetUp() override { dir_ = testing::TemporaryDir(); }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-
-  std::string Write(const std::string& content) const {
-    const std::string path = dir_ + "/candidates.txt";
-    std::ofstream(path) << content;
-    return path;
-  }
+  using TemporaryDirTest::Write;
+  std::string Write(const std::string& content) const { return Write("candidates.txt", content); }
 
   // Reading `content` fails with a ParseError at `line` naming file, line and `expected`.
   void ExpectParseError(const std::string& content, std::size_t line,
@@ -42,7 +36,6 @@ class CandidatesFileTest : public ::testing::Test {
     }
   }
 
-  std::string dir_;
 };
 
 void ExpectCandidate(const Candidate& c, double x_m, double y_m, double yaw_rad,

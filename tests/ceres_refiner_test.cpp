@@ -12,13 +12,7 @@
 namespace scanloc {
 namespace {
 
-// The chapter's classroom: a 6.3 m × 7 m room with an L-shaped board in one corner.
-LineMap Classroom() {
-  LineMap map = testing::RectangleRoom(6.3, 7.0);
-  map.segments.push_back({{5.4, 6.0}, {6.0, 6.0}});
-  map.segments.push_back({{6.0, 6.0}, {6.0, 6.6}});
-  return map;
-}
+using testing::Classroom;
 
 LaserScan Observe(const LineMap& world, const Pose2D& pose, double noise_m, unsigned seed) {
   LaserSimulatorOptions laser;

@@ -49,18 +49,8 @@ std::ostream& operator<<(std::ostream& os, const RunResult& r) {
             << r.err;
 }
 
-// Each test runs the binary in its own directory, removed afterwards.
-class CliTest : public ::testing::Test {
+class CliTest : public testing::TemporaryDirTest {
  protected:
-  void SetUp() override { dir_ = testing::TemporaryDir(); }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-
-  std::string Write(const std::string& name, const std::string& content) const {
-    const std::string path = dir_ + "/" + name;
-    std::ofstream(path) << content;
-    return path;
-  }
-
   // Runs SCANLOC_BINARY with `arguments` (no shell: nothing to quote), stdout and stderr captured.
   RunResult Run(const std::vector<std::string>& arguments) const {
     const std::string out_path = dir_ + "/stdout.txt", err_path = dir_ + "/stderr.txt";
@@ -112,7 +102,6 @@ class CliTest : public ::testing::Test {
     EXPECT_TRUE(r.out.empty()) << "no partial result on stdout\n" << r;
   }
 
-  std::string dir_;
 };
 
 bool Contains(const std::string& text, const std::string& part) {

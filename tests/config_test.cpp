@@ -42,15 +42,10 @@ bool Contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
-class ConfigFileTest : public ::testing::Test {
+class ConfigFileTest : public testing::TemporaryDirTest {
  protected:
-  void SetUp() override { dir_ = testing::TemporaryDir(); }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::string Write(const std::string& content) const {
-    const std::string path = dir_ + "/config.json";
-    std::ofstream(path) << content;
-    return path;
-  }
+  using TemporaryDirTest::Write;
+  std::string Write(const std::string& content) const { return Write("config.json", content); }
   // The message LoadConfig throws for a file with `content`, or "" when it loads.
   std::string LoadError(const std::string& content) const {
     try {
@@ -60,7 +55,6 @@ class ConfigFileTest : public ::testing::Test {
     }
     return "";
   }
-  std::string dir_;
 };
 
 TEST(Config, DefaultsAreTheChaptersValues) {

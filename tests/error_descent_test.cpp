@@ -18,24 +18,9 @@ namespace {
 constexpr double kNoiseSigmaM = 0.02;  // the Acuity's range error
 constexpr unsigned kNoiseSeed = 20240611;
 
-// An 8 m × 6 m room with an L-shaped feature near one corner (the classroom's asymmetry).
-LineMap ClassroomLike() {
-  LineMap map = testing::RectangleRoom(8.0, 6.0);
-  map.segments.push_back({{6.0, 4.0}, {7.0, 4.0}});
-  map.segments.push_back({{7.0, 4.0}, {7.0, 5.0}});
-  return map;
-}
-
-// The "real" scan: the map seen from the true posture, optionally with Gaussian range noise.
+// The "real" scan: the map seen from the true posture over 720 beams, optionally with noise.
 LaserScan RealScan(const LineMap& map, const Pose2D& T_world_laser_true, double sigma_m) {
-  const ScanLayout layout = MakeLayout(720, 2.0 * M_PI, 20.0);
-  LaserScan scan = testing::ScanFromSimulation(SimulateFromLines(map, layout, T_world_laser_true));
-  std::mt19937 rng(kNoiseSeed);
-  std::normal_distribution<double> noise(0.0, sigma_m);
-  if (sigma_m > 0.0)
-    for (double& range : scan.ranges_m)
-      if (range > 0.0) range += noise(rng);
-  return scan;
+  return testing::NoisyScan(map, T_world_laser_true, 720, sigma_m, kNoiseSeed);
 }
 
 std::string Report(const RefinementResult& r) {
@@ -50,7 +35,7 @@ std::string Report(const RefinementResult& r) {
 const Pose2D kTrue(3.2, 2.5, 0.3);
 
 TEST(ErrorDescent, RecoversTruePoseWithinFiveMillimetresFromSmallOffsetsNoiseFree) {
-  const LineMap lines = ClassroomLike();
+  const LineMap lines = testing::SmallRoomWithL();
   const LaserScan scan = RealScan(lines, kTrue, 0.0);
   const MapView map{&lines, nullptr};
   // Offsets off the search lattice (multiples of 0.625 mm / 0.0625 mrad), so that the true posture
@@ -73,7 +58,7 @@ TEST(ErrorDescent, RecoversTruePoseWithinFiveMillimetresFromSmallOffsetsNoiseFre
 }
 
 TEST(ErrorDescent, AxisMovesOnlyAlsoRecoverTruePose) {
-  const LineMap lines = ClassroomLike();
+  const LineMap lines = testing::SmallRoomWithL();
   const LaserScan scan = RealScan(lines, kTrue, 0.0);
   ErrorDescentOptions options;
   options.diagonal_moves = false;
@@ -88,7 +73,7 @@ TEST(ErrorDescent, AxisMovesOnlyAlsoRecoverTruePose) {
 }
 
 TEST(ErrorDescent, ExpectValueNeverIncreasesAndPoseImprovesWithRangeNoise) {
-  const LineMap lines = ClassroomLike();
+  const LineMap lines = testing::SmallRoomWithL();
   const LaserScan scan = RealScan(lines, kTrue, kNoiseSigmaM);
   const Pose2D initial(kTrue.x_m - 0.0388, kTrue.y_m + 0.0291, kTrue.yaw_rad - 0.0147);
   const RefinementResult r =
@@ -103,7 +88,7 @@ TEST(ErrorDescent, ExpectValueNeverIncreasesAndPoseImprovesWithRangeNoise) {
 }
 
 TEST(ErrorDescent, RecoversTruePoseOnPointMapSampledFromLines) {
-  const LineMap lines = ClassroomLike();
+  const LineMap lines = testing::SmallRoomWithL();
   const PointMap points = PointMapFromLines(lines);
   const LaserScan scan = RealScan(lines, kTrue, 0.0);
   const Pose2D initial(kTrue.x_m + 0.0317, kTrue.y_m + 0.0213, kTrue.yaw_rad - 0.0147);
@@ -120,7 +105,7 @@ TEST(ErrorDescent, RecoversTruePoseOnPointMapSampledFromLines) {
 TEST(ErrorDescent, ScoresEveryStencilOncePerLevelWhenStartingAtTheOptimum) {
   // Noise-free at the true posture every pair is in slot 0: no neighbour can improve, so each
   // level scores its stencil once and stays put: 1 + 26·7 postures (1 + 6·7 with axis moves).
-  const LineMap lines = ClassroomLike();
+  const LineMap lines = testing::SmallRoomWithL();
   const LaserScan scan = RealScan(lines, kTrue, 0.0);
   const MapView map{&lines, nullptr};
   const RefinementResult diagonal = RefineErrorDescent(map, scan, kTrue, ScoringOptions{});
@@ -134,7 +119,7 @@ TEST(ErrorDescent, ScoresEveryStencilOncePerLevelWhenStartingAtTheOptimum) {
 }
 
 TEST(ErrorDescent, MoveBudgetExhaustedIsReportedAsNotConverged) {
-  const LineMap lines = ClassroomLike();
+  const LineMap lines = testing::SmallRoomWithL();
   const LaserScan scan = RealScan(lines, kTrue, 0.0);
   ErrorDescentOptions options;
   options.max_moves_per_level = 1;
@@ -148,7 +133,7 @@ TEST(ErrorDescent, MoveBudgetExhaustedIsReportedAsNotConverged) {
 }
 
 TEST(ErrorDescent, EmptyMapOrAllInvalidScanGivesInitialPoseNotConverged) {
-  const LineMap lines = ClassroomLike();
+  const LineMap lines = testing::SmallRoomWithL();
   const LineMap empty;
   LaserScan scan = RealScan(lines, kTrue, 0.0);
   const Pose2D initial(kTrue.x_m + 0.03, kTrue.y_m, kTrue.yaw_rad);
@@ -167,7 +152,7 @@ TEST(ErrorDescent, EmptyMapOrAllInvalidScanGivesInitialPoseNotConverged) {
 }
 
 TEST(ErrorDescent, InvalidOptionsThrowWithMessage) {
-  const LineMap lines = ClassroomLike();
+  const LineMap lines = testing::SmallRoomWithL();
   const LaserScan scan = RealScan(lines, kTrue, 0.0);
   const MapView map{&lines, nullptr};
   auto expect_throw = [&](ErrorDescentOptions options, const std::string& field) {

@@ -18,24 +18,9 @@ namespace {
 constexpr double kNoiseSigmaM = 0.02;  // the Acuity's range error
 constexpr unsigned kNoiseSeed = 20240611;
 
-// An 8 m × 6 m room with an L-shaped feature near one corner (the classroom's asymmetry).
-LineMap ClassroomLike() {
-  LineMap map = testing::RectangleRoom(8.0, 6.0);
-  map.segments.push_back({{6.0, 4.0}, {7.0, 4.0}});
-  map.segments.push_back({{7.0, 4.0}, {7.0, 5.0}});
-  return map;
-}
-
-// The "real" scan: the map seen from the true posture, optionally with Gaussian range noise.
+// The "real" scan: the map seen from the true posture over 720 beams, optionally with noise.
 LaserScan RealScan(const LineMap& map, const Pose2D& T_world_laser_true, double sigma_m) {
-  const ScanLayout layout = MakeLayout(720, 2.0 * M_PI, 20.0);
-  LaserScan scan = testing::ScanFromSimulation(SimulateFromLines(map, layout, T_world_laser_true));
-  std::mt19937 rng(kNoiseSeed);
-  std::normal_distribution<double> noise(0.0, sigma_m);
-  if (sigma_m > 0.0)
-    for (double& range : scan.ranges_m)
-      if (range > 0.0) range += noise(rng);
-  return scan;
+  return testing::NoisyScan(map, T_world_laser_true, 720, sigma_m, kNoiseSeed);
 }
 
 std::string Report(const RefinementResult& r) {
@@ -62,7 +47,7 @@ void ExpectNearTrue(const RefinementResult& r, double tolerance_m, double tolera
 }
 
 TEST(IcpRefiner, PointToPointRecoversTruePoseWithinTwoMillimetresNoiseFree) {
-  const LineMap lines = ClassroomLike();
+  const LineMap lines = testing::SmallRoomWithL();
   const LaserScan scan = RealScan(lines, kTrue, 0.0);
   for (const Pose2D& offset : kOffsets) {
     const RefinementResult r =
@@ -77,7 +62,7 @@ TEST(IcpRefiner, PointToPointRecoversTruePoseWithinTwoMillimetresNoiseFree) {
 }
 
 TEST(IcpRefiner, PointToLineRecoversTruePoseWithinATenthOfAMillimetreNoiseFree) {
-  const LineMap lines = ClassroomLike();
+  const LineMap lines = testing::SmallRoomWithL();
   const LaserScan scan = RealScan(lines, kTrue, 0.0);
   IcpOptions options;
   options.point_to_plane = true;
@@ -93,7 +78,7 @@ TEST(IcpRefiner, PointToLineRecoversTruePoseWithinATenthOfAMillimetreNoiseFree) 
 }
 
 TEST(IcpRefiner, ExpectValueNeverIncreasesAndPoseStaysWithinFiveMillimetresWithRangeNoise) {
-  const LineMap lines = ClassroomLike();
+  const LineMap lines = testing::SmallRoomWithL();
   const LaserScan scan = RealScan(lines, kTrue, kNoiseSigmaM);
   for (const bool point_to_plane : {false, true}) {
     IcpOptions options;
@@ -108,7 +93,7 @@ TEST(IcpRefiner, ExpectValueNeverIncreasesAndPoseStaysWithinFiveMillimetresWithR
 }
 
 TEST(IcpRefiner, RecoversTruePoseWithinTwoMillimetresOnPointMapAndOnLinesPlusPoints) {
-  const LineMap lines = ClassroomLike();
+  const LineMap lines = testing::SmallRoomWithL();
   const PointMap points = PointMapFromLines(lines);
   const LaserScan scan = RealScan(lines, kTrue, 0.0);
   for (const MapView& map : {MapView{nullptr, &points}, MapView{&lines, &points}}) {
@@ -126,7 +111,7 @@ TEST(IcpRefiner, RecoversTruePoseWithinTwoMillimetresOnPointMapAndOnLinesPlusPoi
 }
 
 TEST(IcpRefiner, EmptyMapGivesInitialPoseNotConverged) {
-  const LineMap lines = ClassroomLike();
+  const LineMap lines = testing::SmallRoomWithL();
   const LineMap empty_lines;
   const PointMap empty_points;
   const LaserScan scan = RealScan(lines, kTrue, 0.0);
@@ -141,7 +126,7 @@ TEST(IcpRefiner, EmptyMapGivesInitialPoseNotConverged) {
 }
 
 TEST(IcpRefiner, AllInvalidScanGivesInitialPoseNotConverged) {
-  const LineMap lines = ClassroomLike();
+  const LineMap lines = testing::SmallRoomWithL();
   LaserScan scan = RealScan(lines, kTrue, 0.0);
   for (double& range : scan.ranges_m) range = -1.0;
   for (const bool point_to_plane : {false, true}) {
@@ -156,7 +141,7 @@ TEST(IcpRefiner, AllInvalidScanGivesInitialPoseNotConverged) {
 }
 
 TEST(IcpRefiner, MapOutOfRangeGivesInitialPoseNotConverged) {
-  const LineMap lines = ClassroomLike();
+  const LineMap lines = testing::SmallRoomWithL();
   const LaserScan scan = RealScan(lines, kTrue, 0.0);
   // 100 m away: no map point lies within the scan's 20 m range_max.
   const Pose2D far_away(100.0, 100.0, 0.0);
@@ -166,7 +151,7 @@ TEST(IcpRefiner, MapOutOfRangeGivesInitialPoseNotConverged) {
 }
 
 TEST(IcpRefiner, IterationCapReachedIsReportedAsNotConverged) {
-  const LineMap lines = ClassroomLike();
+  const LineMap lines = testing::SmallRoomWithL();
   const LaserScan scan = RealScan(lines, kTrue, 0.0);
   IcpOptions options;
   options.max_iterations = 1;
@@ -177,7 +162,7 @@ TEST(IcpRefiner, IterationCapReachedIsReportedAsNotConverged) {
 }
 
 TEST(IcpRefiner, InvalidOptionsThrowWithMessage) {
-  const LineMap lines = ClassroomLike();
+  const LineMap lines = testing::SmallRoomWithL();
   const LaserScan scan = RealScan(lines, kTrue, 0.0);
   const MapView map{&lines, nullptr};
   auto expect_throw = [&](IcpOptions options, const std::string& field) {

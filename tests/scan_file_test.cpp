@@ -21,18 +21,8 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // The first bearing and step are written with 15 significant digits.
 constexpr double kAngleTolerance = 1e-13;
 
-// Each test gets its own directory, removed afterwards.
-class ScanFileTest : public ::testing::Test {
+class ScanFileTest : public testing::TemporaryDirTest {
  protected:
-  void SetUp() override { dir_ = testing::TemporaryDir(); }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-
-  std::string Write(const std::string& name, const std::string& content) const {
-    const std::string path = dir_ + "/" + name;
-    std::ofstream(path) << content;
-    return path;
-  }
-
   // Reads `content` as a scan file and checks that it fails with a ParseError at `line` whose
   // message names the file and line and contains `expected`.
   void ExpectParseError(const std::string& content, std::size_t line,
@@ -51,7 +41,6 @@ class ScanFileTest : public ::testing::Test {
     }
   }
 
-  std::string dir_;
 };
 
 // Eight beams over a full turn: three valid ranges, and the four ways of saying "no echo".

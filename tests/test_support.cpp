@@ -2,6 +2,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <random>
 
 namespace scanloc::testing {
 
@@ -12,6 +14,32 @@ LineMap RectangleRoom(double width_m, double height_m) {
                   {{width_m, height_m}, {0, height_m}},
                   {{0, height_m}, {0, 0}}};
   return map;
+}
+
+LineMap Classroom() {
+  LineMap map = RectangleRoom(6.3, 7.0);
+  map.segments.push_back({{5.4, 6.0}, {6.0, 6.0}});
+  map.segments.push_back({{6.0, 6.0}, {6.0, 6.6}});
+  return map;
+}
+
+LineMap SmallRoomWithL() {
+  LineMap map = RectangleRoom(8.0, 6.0);
+  map.segments.push_back({{6.0, 4.0}, {7.0, 4.0}});
+  map.segments.push_back({{7.0, 4.0}, {7.0, 5.0}});
+  return map;
+}
+
+LaserScan NoisyScan(const LineMap& map, const Pose2D& T_world_laser, std::size_t beams,
+                    double sigma_m, unsigned seed) {
+  const ScanLayout layout = MakeLayout(beams, 2.0 * M_PI, 20.0);
+  LaserScan scan = ScanFromSimulation(SimulateFromLines(map, layout, T_world_laser));
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, sigma_m);
+  if (sigma_m > 0.0)
+    for (double& range : scan.ranges_m)
+      if (range > 0.0) range += noise(rng);
+  return scan;
 }
 
 LaserScan ScanFromSimulation(const SimulatedScan& simulated) {
@@ -32,6 +60,14 @@ std::string TemporaryDir() {
   std::string pattern = base.string();
   if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
   return pattern;
+}
+
+void TemporaryDirTest::TearDown() { std::filesystem::remove_all(dir_); }
+
+std::string TemporaryDirTest::Write(const std::string& name, const std::string& content) const {
+  const std::string path = dir_ + "/" + name;
+  std::ofstream(path) << content;
+  return path;
 }
 
 }  // namespace scanloc::testing

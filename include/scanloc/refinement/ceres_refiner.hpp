@@ -41,12 +41,12 @@ struct CeresRefinerOptions {
   // Pairs farther apart than this are left out of the problem (T_Map's role); ≤ 0 uses T_Map.
   double max_residual_m = 0.0;
   // Point maps: the k nearest points of the hit within a radius define its local line, unless
-  // their spread is too round (√(λmin/λmax) above max_line_thickness: a corner or a blob). Walls
-  // in maps grown from real scans are two or three de-duplication cells thick: the median
-  // thickness measured on the Intel map is 0.47 for 8 neighbours.
-  int line_fit_neighbours = 12;
-  double line_fit_radius_m = 0.5;
-  double max_line_thickness = 0.7;
+  // their spread is too round (√(λmin/λmax) above max_line_thickness: a corner or a blob). Chosen
+  // on the real-scan harness (docs/BENCHMARKS.md): with de-duplicated maps, whose points stand
+  // about one cell diagonal apart, 5 neighbours within 0.3 m beat 6–12 within 0.25–0.5 m.
+  int line_fit_neighbours = 5;
+  double line_fit_radius_m = 0.3;
+  double max_line_thickness = 0.8;
   // Degenerate when the weakest direction of the information matrix (rotation scaled by the
   // median range) carries less than this fraction of the strongest.
   double degeneracy_ratio = 0.01;
