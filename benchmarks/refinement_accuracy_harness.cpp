@@ -1,10 +1,10 @@
 // Refinement on real scans: for each public log, a reference point map is built from the scans
 // with corrected poses (every other one), the held-out scans are perturbed (fixed seed) and refined
 // by every method, and the results are scored against the corrected poses. All methods run in the
-// same process, on the same scans, one after the other, so their times compare side by side.
+// same process, on the same scans, interleaved scan by scan, so their times compare side by side.
 //
 //   refinement_accuracy_harness [--datasets DIR] [--scans N] [--seed S] [--offset-m D]
-//                               [--offset-rad A] [--methods LIST]
+//                               [--offset-rad A] [--methods LIST] [--logs intel,aces,fr079]
 
 #include <algorithm>
 #include <chrono>
@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
   int scans_per_dataset = 100;
   unsigned seed = 1;
   double offset_m = 0.2, offset_rad = 0.05;
-  std::string only_methods;
+  std::string only_methods, only_logs;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string key = argv[i], value = argv[i + 1];
     if (key == "--datasets") datasets = value;
@@ -77,6 +77,7 @@ int main(int argc, char** argv) {
     else if (key == "--offset-m") offset_m = std::stod(value);
     else if (key == "--offset-rad") offset_rad = std::stod(value);
     else if (key == "--methods") only_methods = "," + value + ",";
+    else if (key == "--logs") only_logs = "," + value + ",";
     else {
       std::fprintf(stderr, "unknown option %s\n", key.c_str());
       return 2;
@@ -98,6 +99,7 @@ int main(int argc, char** argv) {
   std::printf("| log | method | success | median error [mm] | median error [mrad] | median time "
               "[ms] | mean time [ms] | converged |\n|---|---|---|---|---|---|---|---|\n");
   for (const std::string name : {"intel", "aces", "fr079"}) {
+    if (!only_logs.empty() && only_logs.find("," + name + ",") == std::string::npos) continue;
     const auto samples = ReadCorrectedScans(datasets + "/" + name + ".clf.gz",
                                             datasets + "/" + name + ".corrected-poses.txt");
     PointMap map;  // default de-duplication cell (0.05 m)
@@ -123,29 +125,39 @@ int main(int argc, char** argv) {
     }
     const MapView view{nullptr, &map};
     ScoringOptions scoring;
-    for (const auto& method : methods) {
+    // Interleaved: every method refines scan i before any refines scan i + 1, so that the load of
+    // a shared machine weighs on all methods alike.
+    struct Tally {
       std::vector<double> errors_m, errors_rad, times_ms;
       int successes = 0, converged = 0;
-      for (std::size_t i = 0; i < tests.size(); ++i) {
+    };
+    std::vector<Tally> tallies(methods.size());
+    for (std::size_t i = 0; i < tests.size(); ++i)
+      for (std::size_t m = 0; m < methods.size(); ++m) {
+        Tally& t = tallies[m];
         const auto start = std::chrono::steady_clock::now();
-        const RefinementResult r = Refine(view, tests[i]->scan, starts[i], scoring, method.options);
-        times_ms.push_back(
+        const RefinementResult r =
+            Refine(view, tests[i]->scan, starts[i], scoring, methods[m].options);
+        t.times_ms.push_back(
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                 .count());
         const Pose2D error = Between(tests[i]->T_world_laser, r.T_world_laser);
         const double e_m = std::hypot(error.x_m, error.y_m), e_rad = std::abs(error.yaw_rad);
-        errors_m.push_back(e_m);
-        errors_rad.push_back(e_rad);
-        successes += e_m < 0.05 && e_rad < 0.01;
-        converged += r.converged;
+        t.errors_m.push_back(e_m);
+        t.errors_rad.push_back(e_rad);
+        t.successes += e_m < 0.05 && e_rad < 0.01;
+        t.converged += r.converged;
       }
+    for (std::size_t m = 0; m < methods.size(); ++m) {
+      const Tally& t = tallies[m];
       double mean_ms = 0.0;
-      for (const double t : times_ms) mean_ms += t / times_ms.size();
+      for (const double v : t.times_ms) mean_ms += v / t.times_ms.size();
       std::printf("| %s | %s | %.0f %% | %.1f | %.2f | %.2f | %.2f | %d/%zu |\n", name.c_str(),
-                  method.name.c_str(), 100.0 * successes / tests.size(), 1e3 * Median(errors_m),
-                  1e3 * Median(errors_rad), Median(times_ms), mean_ms, converged, tests.size());
-      std::fflush(stdout);
+                  methods[m].name.c_str(), 100.0 * t.successes / tests.size(),
+                  1e3 * Median(t.errors_m), 1e3 * Median(t.errors_rad), Median(t.times_ms), mean_ms,
+                  t.converged, tests.size());
     }
+    std::fflush(stdout);
   }
   return 0;
 }

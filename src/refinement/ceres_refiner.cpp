@@ -290,10 +290,14 @@ RefinementResult RefineCeres(const MapView& map, const LaserScan& scan,
   // the scan is simulated only to score the postures before and after.
   SimulatedScan simulated = score.simulated;
   BuiltProblem built;
+  // Outlives the loop: the last problem is evaluated at the solution for the uncertainty.
+  double parameters[3] = {pose.x_m, pose.y_m, pose.yaw_rad};
   for (int outer = 0; outer < options.max_outer_iterations; ++outer) {
     if (outer > 0 && needs_simulation)
       simulated = Simulate(map, scan.layout, pose, scoring.simulation);
-    double parameters[3] = {pose.x_m, pose.y_m, pose.yaw_rad};
+    parameters[0] = pose.x_m;
+    parameters[1] = pose.y_m;
+    parameters[2] = pose.yaw_rad;
     built = BuildProblem(map, scan, pose, simulated, scoring, options, parameters);
     result.iterations = outer + 1;
     if (built.residual_count < 3) break;
@@ -317,9 +321,15 @@ RefinementResult RefineCeres(const MapView& map, const LaserScan& scan,
   result.T_world_laser = pose;
   result.test_after = score.test;
   result.distance_after = score.distance;
-  // The uncertainty of the final posture, with the correspondences it was found with.
-  double parameters[3] = {pose.x_m, pose.y_m, pose.yaw_rad};
-  built = BuildProblem(map, scan, pose, score.simulated, scoring, options, parameters);
+  // The uncertainty of the final posture, from the last problem (the correspondences the posture
+  // was found with) evaluated at the solution.
+  if (!built.problem) {
+    built = BuildProblem(map, scan, pose, score.simulated, scoring, options, parameters);
+  } else {
+    parameters[0] = pose.x_m;
+    parameters[1] = pose.y_m;
+    parameters[2] = pose.yaw_rad;
+  }
   EstimateUncertainty(built, options, result);
   result.time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
