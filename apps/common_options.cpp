@@ -27,7 +27,8 @@ LoadedMaps LoadMaps(const MapArguments& arguments, const Config& config, bool re
     throw std::runtime_error("a map is required: --map LINES and/or --point-map PCD");
   LoadedMaps maps;
   if (!arguments.point_map_path.empty())
-    maps.points = std::make_unique<PointMap>(LoadPointMapPcd(arguments.point_map_path, config.point_map));
+    maps.points =
+        std::make_unique<PointMap>(LoadPointMapPcd(arguments.point_map_path, config.point_map));
   if (!arguments.line_map_path.empty()) {
     LineMap lines = ReadLineMap(arguments.line_map_path);
     if (arguments.sample_lines) {
@@ -65,7 +66,7 @@ Config ConfigArguments::Build() const {
     }
     nlohmann::json patch = value;
     std::string path = assignment.substr(0, equals);
-    for (auto dot = path.rfind('.'); ; dot = path.rfind('.')) {
+    for (auto dot = path.rfind('.');; dot = path.rfind('.')) {
       const std::string key = dot == std::string::npos ? path : path.substr(dot + 1);
       patch = nlohmann::json{{key, patch}};
       if (dot == std::string::npos) break;

@@ -31,8 +31,8 @@ struct LoadedMaps {
 LoadedMaps LoadMaps(const MapArguments& arguments, const Config& config, bool required = true);
 
 struct ConfigArguments {
-  std::string config_path;         // --config FILE (JSON)
-  std::vector<std::string> sets;   // --set section.key=value, applied after the file
+  std::string config_path;                  // --config FILE (JSON)
+  std::vector<std::string> sets;            // --set section.key=value, applied after the file
   std::optional<double> min_match_ratio;    // --min-match-ratio (validation.min_match_ratio)
   std::optional<double> match_threshold_m;  // --match-threshold (likelihood_test.match_threshold_m)
   void Register(CLI::App& command);

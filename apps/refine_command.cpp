@@ -34,8 +34,9 @@ void RegisterRefineCommand(CLI::App& app) {
       ->check(CLI::ExistingFile);
   command->add_option("--method", a->method, "ceres, error-descent or icp")
       ->check(CLI::IsMember({"ceres", "error-descent", "icp"}));
-  command->add_option("--incidence", a->incidence,
-                      "Ceres residual weighting by incidence: none, cosine or gate")
+  command
+      ->add_option("--incidence", a->incidence,
+                   "Ceres residual weighting by incidence: none, cosine or gate")
       ->check(CLI::IsMember({"none", "cosine", "gate"}));
   command->add_flag("--json", a->json, "print JSON (with histograms) instead of a table");
   command->final_callback([a] {

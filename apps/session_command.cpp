@@ -20,7 +20,9 @@ namespace scanloc::app {
 namespace {
 
 std::atomic<bool> g_interrupted{false};
-extern "C" void OnInterrupt(int) { g_interrupted = true; }
+extern "C" void OnInterrupt(int) {
+  g_interrupted = true;
+}
 
 double PeakResidentMegabytes() {
   rusage usage{};
@@ -88,7 +90,9 @@ void RegisterSessionCommand(CLI::App& app) {
     std::size_t localised = 0, skipped = 0, validated = 0, flagged = 0, inserted = 0;
     double first_t = 0.0, min_t = 0.0, max_t = 0.0;
     Iteration iteration;
-    auto wanted = [&] { return a->max_scans == 0 || !session || session->iterations() < a->max_scans; };
+    auto wanted = [&] {
+      return a->max_scans == 0 || !session || session->iterations() < a->max_scans;
+    };
     while (!g_interrupted && wanted() && source->Next(iteration)) {
       // The mounting is final once the first scan was read (CARMEN's PARAM precedes it).
       if (!session) {
@@ -120,32 +124,33 @@ void RegisterSessionCommand(CLI::App& app) {
         const double elapsed = std::chrono::duration<double>(now - start).count();
         const double progress = ProgressOf(*source);
         const double eta = progress > 0.0 ? elapsed * (1.0 - progress) / progress : 0.0;
-        std::fprintf(stderr, "\rscans %zu, %.0f scans/s, %.0f× real time, map %zu points, %3.0f %%, ETA %.0f s   ",
-                     session->iterations(), session->iterations() / elapsed,
-                     (max_t - min_t) / elapsed, record.map_points, 100.0 * progress, eta);
+        std::fprintf(
+            stderr,
+            "\rscans %zu, %.0f scans/s, %.0f× real time, map %zu points, %3.0f %%, ETA %.0f s   ",
+            session->iterations(), session->iterations() / elapsed, (max_t - min_t) / elapsed,
+            record.map_points, 100.0 * progress, eta);
       }
     }
     if (!a->quiet) std::fprintf(stderr, "\n");
     const double wall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const std::size_t count = session ? session->iterations() : 0;
-    nlohmann::json summary = {
-        {"log", a->log_path},
-        {"interrupted", g_interrupted.load()},
-        {"iterations", count},
-        {"localised", localised},
-        {"skipped", skipped},
-        {"validated", validated},
-        {"flagged_not_validated", flagged},
-        {"inserted", inserted},
-        {"map_points", session ? session->point_map().size() : 0},
-        {"wall_time_s", wall_s},
-        {"data_span_s", max_t - min_t},
-        {"first_timestamp_s", first_t},
-        {"scans_per_s", wall_s > 0 ? count / wall_s : 0.0},
-        {"times_real_time", wall_s > 0 ? (max_t - min_t) / wall_s : 0.0},
-        {"peak_resident_mb", PeakResidentMegabytes()},
-        {"config", ToJson(config)}};
+    nlohmann::json summary = {{"log", a->log_path},
+                              {"interrupted", g_interrupted.load()},
+                              {"iterations", count},
+                              {"localised", localised},
+                              {"skipped", skipped},
+                              {"validated", validated},
+                              {"flagged_not_validated", flagged},
+                              {"inserted", inserted},
+                              {"map_points", session ? session->point_map().size() : 0},
+                              {"wall_time_s", wall_s},
+                              {"data_span_s", max_t - min_t},
+                              {"first_timestamp_s", first_t},
+                              {"scans_per_s", wall_s > 0 ? count / wall_s : 0.0},
+                              {"times_real_time", wall_s > 0 ? (max_t - min_t) / wall_s : 0.0},
+                              {"peak_resident_mb", PeakResidentMegabytes()},
+                              {"config", ToJson(config)}};
     if (count == 0) summary["problem"] = "the sequence has no scan";
     const PointMap empty_map(config.point_map);
     run.Finish(session ? session->point_map() : empty_map, summary);
@@ -154,7 +159,8 @@ void RegisterSessionCommand(CLI::App& app) {
               << " points, " << wall_s << " s (" << summary["times_real_time"].get<double>()
               << "× real time), peak " << summary["peak_resident_mb"].get<double>() << " MB"
               << (g_interrupted ? ", interrupted" : "") << "\n"
-              << "wrote " << run.directory() << "/{iterations.jsonl,trajectory.tum,map.pcd,summary.json}\n";
+              << "wrote " << run.directory()
+              << "/{iterations.jsonl,trajectory.tum,map.pcd,summary.json}\n";
   });
 }
 

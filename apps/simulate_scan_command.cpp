@@ -37,8 +37,9 @@ void RegisterSimulateScanCommand(CLI::App& app) {
   command->add_option("--noise", a->laser.range_noise_m, "range noise σ at short range (m)");
   command->add_option("--noise-per-m", a->laser.range_noise_per_m, "σ growth per metre");
   command->add_option("--dropout", a->laser.dropout_probability, "missing-return probability");
-  command->add_option("--body-sector", a->body_sector,
-                      "bearings (rad, laser frame) hitting the robot body: FROM TO")
+  command
+      ->add_option("--body-sector", a->body_sector,
+                   "bearings (rad, laser frame) hitting the robot body: FROM TO")
       ->expected(2);
   command->final_callback([a] {
     for (const double v : a->pose)

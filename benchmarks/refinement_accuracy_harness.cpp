@@ -63,21 +63,28 @@ double Median(std::vector<double> values) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string datasets = std::getenv("SCANLOC_DATASETS") ? std::getenv("SCANLOC_DATASETS")
-                                                         : "../shared/datasets";
+  std::string datasets =
+      std::getenv("SCANLOC_DATASETS") ? std::getenv("SCANLOC_DATASETS") : "../shared/datasets";
   int scans_per_dataset = 100;
   unsigned seed = 1;
   double offset_m = 0.2, offset_rad = 0.05;
   std::string only_methods, only_logs;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string key = argv[i], value = argv[i + 1];
-    if (key == "--datasets") datasets = value;
-    else if (key == "--scans") scans_per_dataset = std::stoi(value);
-    else if (key == "--seed") seed = static_cast<unsigned>(std::stoul(value));
-    else if (key == "--offset-m") offset_m = std::stod(value);
-    else if (key == "--offset-rad") offset_rad = std::stod(value);
-    else if (key == "--methods") only_methods = "," + value + ",";
-    else if (key == "--logs") only_logs = "," + value + ",";
+    if (key == "--datasets")
+      datasets = value;
+    else if (key == "--scans")
+      scans_per_dataset = std::stoi(value);
+    else if (key == "--seed")
+      seed = static_cast<unsigned>(std::stoul(value));
+    else if (key == "--offset-m")
+      offset_m = std::stod(value);
+    else if (key == "--offset-rad")
+      offset_rad = std::stod(value);
+    else if (key == "--methods")
+      only_methods = "," + value + ",";
+    else if (key == "--logs")
+      only_logs = "," + value + ",";
     else {
       std::fprintf(stderr, "unknown option %s\n", key.c_str());
       return 2;
@@ -92,12 +99,14 @@ int main(int argc, char** argv) {
     if (only_methods.empty() || only_methods.find("," + m.name + ",") != std::string::npos)
       methods.push_back(m);
 
-  std::printf("Refinement from perturbed postures (%.2f m in a random direction, ±%.3f rad), "
-              "%d held-out scans per log, seed %u\n",
-              offset_m, offset_rad, scans_per_dataset, seed);
+  std::printf(
+      "Refinement from perturbed postures (%.2f m in a random direction, ±%.3f rad), "
+      "%d held-out scans per log, seed %u\n",
+      offset_m, offset_rad, scans_per_dataset, seed);
   std::printf("success: within 0.05 m and 0.01 rad of the corrected pose\n\n");
-  std::printf("| log | method | success | median error [mm] | median error [mrad] | median time "
-              "[ms] | mean time [ms] | converged |\n|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| log | method | success | median error [mm] | median error [mrad] | median time "
+      "[ms] | mean time [ms] | converged |\n|---|---|---|---|---|---|---|---|\n");
   for (const std::string name : {"intel", "aces", "fr079"}) {
     if (!only_logs.empty() && only_logs.find("," + name + ",") == std::string::npos) continue;
     const auto samples = ReadCorrectedScans(datasets + "/" + name + ".clf.gz",
@@ -105,8 +114,10 @@ int main(int argc, char** argv) {
     PointMap map;  // default de-duplication cell (0.05 m)
     std::vector<const CorrectedScan*> held_out;
     for (std::size_t i = 0; i < samples.size(); ++i) {
-      if (i % 2 == 0) map.InsertScan(samples[i].scan, samples[i].T_world_laser);
-      else held_out.push_back(&samples[i]);
+      if (i % 2 == 0)
+        map.InsertScan(samples[i].scan, samples[i].T_world_laser);
+      else
+        held_out.push_back(&samples[i]);
     }
     std::vector<const CorrectedScan*> tests;
     const std::size_t n = std::min<std::size_t>(scans_per_dataset, held_out.size());

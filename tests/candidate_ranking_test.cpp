@@ -16,10 +16,9 @@ LikelihoodTestResult Moments(int nvp, int mp, double ev, double disp) {
 
 TEST(RankCandidates, ChapterTable1KeepsOnlyP0) {
   // Table 1 of the chapter (NVP 1749): p0 valid; p1 and p2 fail rule 1 or 2; p3 fails rule 2.
-  const auto ranking = RankCandidates({Moments(1749, 1458, 0.0289, 0.0019),
-                                       Moments(1749, 900, 0.0496, 0.0060),
-                                       Moments(1749, 676, 0.0414, 0.0050),
-                                       Moments(1749, 1276, 0.0641, 0.0080)});
+  const auto ranking =
+      RankCandidates({Moments(1749, 1458, 0.0289, 0.0019), Moments(1749, 900, 0.0496, 0.0060),
+                      Moments(1749, 676, 0.0414, 0.0050), Moments(1749, 1276, 0.0641, 0.0080)});
   EXPECT_EQ(ranking.best, 0);
   EXPECT_EQ(ranking.candidates[0].verdict, Verdict::kValid);
   EXPECT_EQ(ranking.candidates[3].verdict, Verdict::kHighExpectValue);
@@ -29,7 +28,8 @@ TEST(RankCandidates, ChapterTable1KeepsOnlyP0) {
 TEST(RankCandidates, Rule1RejectsLowMatchRatioAndAcceptsAboveIt) {
   ValidationOptions options;
   options.min_match_ratio = 0.3;
-  const auto r = RankCandidates({Moments(100, 30, 0.02, 0.001), Moments(100, 31, 0.02, 0.001)}, options);
+  const auto r =
+      RankCandidates({Moments(100, 30, 0.02, 0.001), Moments(100, 31, 0.02, 0.001)}, options);
   EXPECT_EQ(r.candidates[0].verdict, Verdict::kLowMatchRatio);  // 0.30 is not > 0.3
   EXPECT_EQ(r.candidates[1].verdict, Verdict::kValid);
   options.min_match_ratio = 0.2;  // the factory's relaxed ratio

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "scanloc/io/parse_error.hpp"
+#include "scanloc/common/parse_error.hpp"
 #include "test_support.hpp"
 
 namespace scanloc {
@@ -35,7 +35,6 @@ class CandidatesFileTest : public testing::TemporaryDirTest {
       EXPECT_NE(message.find(expected), std::string::npos) << message;
     }
   }
-
 };
 
 void ExpectCandidate(const Candidate& c, double x_m, double y_m, double yaw_rad,

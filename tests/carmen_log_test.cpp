@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "scanloc/io/parse_error.hpp"
+#include "scanloc/common/parse_error.hpp"
 #include "test_support.hpp"
 
 namespace scanloc {

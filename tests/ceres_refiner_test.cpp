@@ -125,8 +125,7 @@ TEST(RefineCeres, LongCorridorIsFlaggedDegenerateAlongItsAxis) {
   const RefinementResult r =
       RefineCeres(MapView{&corridor, nullptr}, scan, {0.1, 0.25, 0.0}, ScoringOptions{});
   EXPECT_TRUE(r.degenerate);
-  EXPECT_NE(r.degeneracy.find("translation along (1.00, 0.00)"), std::string::npos)
-      << r.degeneracy;
+  EXPECT_NE(r.degeneracy.find("translation along (1.00, 0.00)"), std::string::npos) << r.degeneracy;
   // Across the corridor and in heading the posture is still recovered.
   EXPECT_NEAR(r.T_world_laser.y_m, 0.2, 0.01);
   EXPECT_NEAR(r.T_world_laser.yaw_rad, 0.05, 0.005);
@@ -138,8 +137,10 @@ TEST(RefineCeres, MirrorCandidateStaysAtTheMirrorAndScoresWorse) {
   const LaserScan scan = Observe(map, truth, 0.02, 4);
   // The posture symmetric about the room's centre, 5 cm and 0.02 rad off.
   const Pose2D mirror{6.3 - 1.126 + 0.05, 7.0 - 3.112 - 0.03, NormalizeAngle(0.0463 + M_PI + 0.02)};
-  const RefinementResult right = RefineCeres(MapView{&map, nullptr}, scan, truth * Pose2D{0.05, 0.0, 0.01}, ScoringOptions{});
-  const RefinementResult wrong = RefineCeres(MapView{&map, nullptr}, scan, mirror, ScoringOptions{});
+  const RefinementResult right =
+      RefineCeres(MapView{&map, nullptr}, scan, truth * Pose2D{0.05, 0.0, 0.01}, ScoringOptions{});
+  const RefinementResult wrong =
+      RefineCeres(MapView{&map, nullptr}, scan, mirror, ScoringOptions{});
   EXPECT_GT(std::hypot(wrong.T_world_laser.x_m - truth.x_m, wrong.T_world_laser.y_m - truth.y_m),
             3.0)
       << "the mirror candidate must not jump to the true posture";

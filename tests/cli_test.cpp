@@ -101,7 +101,6 @@ class CliTest : public testing::TemporaryDirTest {
     EXPECT_NE(r.err.find(expected), std::string::npos) << "expected '" << expected << "'\n" << r;
     EXPECT_TRUE(r.out.empty()) << "no partial result on stdout\n" << r;
   }
-
 };
 
 bool Contains(const std::string& text, const std::string& part) {

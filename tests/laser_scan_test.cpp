@@ -12,7 +12,12 @@ TEST(LaserScan, InvalidRangesAreNonFiniteNonPositiveBelowMinOrAtMax) {
   LaserScan scan;
   scan.layout = MakeLayout(7, M_PI, 20.0);
   scan.layout.range_min_m = 0.1;
-  scan.ranges_m = {1.0, -1.0, 0.0, 0.05, 20.0, std::numeric_limits<double>::quiet_NaN(),
+  scan.ranges_m = {1.0,
+                   -1.0,
+                   0.0,
+                   0.05,
+                   20.0,
+                   std::numeric_limits<double>::quiet_NaN(),
                    std::numeric_limits<double>::infinity()};
   EXPECT_TRUE(scan.IsValid(0));
   for (std::size_t i = 1; i < scan.size(); ++i) EXPECT_FALSE(scan.IsValid(i)) << "beam " << i;

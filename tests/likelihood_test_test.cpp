@@ -28,8 +28,8 @@ Pair MakePair(const std::vector<double>& real, const std::vector<double>& simula
 TEST(RunLikelihoodTest, HistogramAndMomentsEqualHandComputedValues) {
   // Distances: 0.004 (slot 0), 0.015 (slot 1), 0.015 (slot 1), 0.195 (last slot: > 0.19),
   // 0.6 (beyond T_Map: valid, not a match), and two invalid pairs.
-  const Pair p = MakePair({1.004, 2.015, 3.0, 1.195, 2.6, -1.0, 1.0},
-                          {1.0, 2.0, 3.015, 1.0, 2.0, 1.0, -1.0});
+  const Pair p =
+      MakePair({1.004, 2.015, 3.0, 1.195, 2.6, -1.0, 1.0}, {1.0, 2.0, 3.015, 1.0, 2.0, 1.0, -1.0});
   const LikelihoodTestResult r = RunLikelihoodTest(p.scan, p.simulated);
   EXPECT_EQ(r.valid_pairs, 5);
   EXPECT_EQ(r.match_pairs, 4);

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "scanloc/io/parse_error.hpp"
+#include "scanloc/common/parse_error.hpp"
 #include "test_support.hpp"
 
 namespace scanloc {

@@ -79,7 +79,8 @@ TEST_F(PointMapIoTest, RoundTripKeepsTheSurfaceNormalsOfAScan) {
   SavePointMapPcd(map, path);
   const PointMap loaded = LoadPointMapPcd(path);
   ExpectSameMapWithinFloatPrecision(loaded, map);
-  const Eigen::Vector2d towards_laser = (Eigen::Vector2d(1.0, -2.0) - loaded.point(50)).normalized();
+  const Eigen::Vector2d towards_laser =
+      (Eigen::Vector2d(1.0, -2.0) - loaded.point(50)).normalized();
   EXPECT_NEAR(loaded.normal(50).dot(towards_laser), 1.0, 1e-3);
 }
 

@@ -114,11 +114,11 @@ TEST(PointMapDeduplicationTest, SamplesWithinACellDiagonalMergeAcrossCellsInclud
   options.cell_size_m = 0.05;  // diagonal 0.0707 m
   PointMap map(options);
   EXPECT_TRUE(map.Insert({0.01, 0.01}, 0.1));
-  EXPECT_TRUE(map.Insert({0.12, 0.01}, 0.1));    // 11 cm away: a new point
+  EXPECT_TRUE(map.Insert({0.12, 0.01}, 0.1));  // 11 cm away: a new point
   EXPECT_TRUE(map.Insert({0.01, 0.09}, 0.1));
-  EXPECT_TRUE(map.Insert({-0.07, 0.01}, 0.1));   // across zero (floor, not truncation)
-  EXPECT_FALSE(map.Insert({0.055, 0.01}, 0.1));  // another cell, 4.5 cm from the first: merged
-  EXPECT_FALSE(map.Insert({-0.01, -0.01}, 0.1)); // cell (-1, -1), 2.8 cm from the first: merged
+  EXPECT_TRUE(map.Insert({-0.07, 0.01}, 0.1));    // across zero (floor, not truncation)
+  EXPECT_FALSE(map.Insert({0.055, 0.01}, 0.1));   // another cell, 4.5 cm from the first: merged
+  EXPECT_FALSE(map.Insert({-0.01, -0.01}, 0.1));  // cell (-1, -1), 2.8 cm from the first: merged
   EXPECT_EQ(map.size(), 4u);
   // The first point is now the mean of its three samples.
   EXPECT_NEAR(map.point(0).x(), (0.01 + 0.055 - 0.01) / 3.0, 1e-12);

@@ -27,8 +27,10 @@ Outcome RefineHeldOutScans(const std::vector<CorrectedScan>& scans, const Refine
   PointMap map;
   std::vector<const CorrectedScan*> held_out;
   for (std::size_t i = 0; i < scans.size(); ++i) {
-    if (i % 2 == 0) map.InsertScan(scans[i].scan, scans[i].T_world_laser);
-    else held_out.push_back(&scans[i]);
+    if (i % 2 == 0)
+      map.InsertScan(scans[i].scan, scans[i].T_world_laser);
+    else
+      held_out.push_back(&scans[i]);
   }
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> angle(-M_PI, M_PI);

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "scanloc/io/parse_error.hpp"
+#include "scanloc/common/parse_error.hpp"
 #include "scanloc/io/trajectory.hpp"
 #include "test_support.hpp"
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "scanloc/io/parse_error.hpp"
+#include "scanloc/common/parse_error.hpp"
 #include "test_support.hpp"
 
 namespace scanloc {
@@ -40,7 +40,6 @@ class ScanFileTest : public testing::TemporaryDirTest {
       EXPECT_NE(message.find(expected), std::string::npos) << message;
     }
   }
-
 };
 
 // Eight beams over a full turn: three valid ranges, and the four ways of saying "no echo".

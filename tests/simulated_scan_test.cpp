@@ -29,8 +29,7 @@ TEST(SimulateFromLines, CentreOfSquareRoomMatchesClosedForm) {
   for (std::size_t k = 0; k < layout.beam_count; ++k) {
     const double b = layout.Bearing(k);
     ASSERT_TRUE(sim.IsValid(k)) << "beam " << k;
-    EXPECT_NEAR(sim.ranges_m[k], 2.0 / std::max(std::abs(std::cos(b)), std::abs(std::sin(b))),
-                1e-9)
+    EXPECT_NEAR(sim.ranges_m[k], 2.0 / std::max(std::abs(std::cos(b)), std::abs(std::sin(b))), 1e-9)
         << "beam " << k;
     EXPECT_EQ(sim.hit_source[k], HitSource::kSegment);
   }
@@ -101,13 +100,15 @@ TEST(SimulateFromLines, EdgeOnSegmentReturnsItsNearerVertex) {
 
 TEST(SimulateFromLines, SegmentPartlyOutsideTheAngularLimitsFillsOnlyBeamsInside) {
   LineMap map;
-  map.segments.push_back({{-1.0, 1.0}, {1.0, 1.0}});  // spans bearings 45°..135°
+  map.segments.push_back({{-1.0, 1.0}, {1.0, 1.0}});      // spans bearings 45°..135°
   const ScanLayout layout = MakeLayout(181, M_PI, 20.0);  // -90°..90°, 1° steps
   const SimulatedScan sim = SimulateFromLines(map, layout, {0.0, 0.0, 0.0});
   for (std::size_t k = 0; k < layout.beam_count; ++k) {
     const double deg = -90.0 + k;
     EXPECT_EQ(sim.IsValid(k), deg >= 45.0 - 1e-9) << deg;
-    if (sim.IsValid(k)) EXPECT_NEAR(sim.ranges_m[k], 1.0 / std::sin(deg * M_PI / 180.0), 1e-9);
+    if (sim.IsValid(k)) {
+      EXPECT_NEAR(sim.ranges_m[k], 1.0 / std::sin(deg * M_PI / 180.0), 1e-9);
+    }
   }
 }
 
@@ -214,7 +215,8 @@ TEST(SimulateFromPoints, IndexedEqualsBruteForceOnRandomMapsOfDiscsAndSurfels) {
     for (int i = 0; i < size; ++i) {
       points.emplace_back(coordinate(rng), coordinate(rng));
       const double a = yaw(rng);  // every other point a surfel, the others discs
-      normals.push_back(i % 2 ? Eigen::Vector2d(std::cos(a), std::sin(a)) : Eigen::Vector2d::Zero());
+      normals.push_back(i % 2 ? Eigen::Vector2d(std::cos(a), std::sin(a))
+                              : Eigen::Vector2d::Zero());
     }
     map.Insert(points, std::vector<double>(points.size(), 0.05), normals);
     for (int trial = 0; trial < 5; ++trial) {
@@ -223,7 +225,9 @@ TEST(SimulateFromPoints, IndexedEqualsBruteForceOnRandomMapsOfDiscsAndSurfels) {
       const SimulatedScan b = SimulateFromPointsBruteForce(map, layout, pose);
       for (std::size_t k = 0; k < layout.beam_count; ++k) {
         ASSERT_EQ(a.IsValid(k), b.IsValid(k)) << "size " << size << " beam " << k;
-        if (a.IsValid(k)) ASSERT_DOUBLE_EQ(a.ranges_m[k], b.ranges_m[k]);
+        if (a.IsValid(k)) {
+          ASSERT_DOUBLE_EQ(a.ranges_m[k], b.ranges_m[k]);
+        }
       }
     }
   }

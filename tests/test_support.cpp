@@ -62,7 +62,9 @@ std::string TemporaryDir() {
   return pattern;
 }
 
-void TemporaryDirTest::TearDown() { std::filesystem::remove_all(dir_); }
+void TemporaryDirTest::TearDown() {
+  std::filesystem::remove_all(dir_);
+}
 
 std::string TemporaryDirTest::Write(const std::string& name, const std::string& content) const {
   const std::string path = dir_ + "/" + name;

@@ -34,8 +34,9 @@ void LaserScan::CheckConsistent() const {
     throw std::invalid_argument("laser scan: reflectance count differs from range count");
   if (!(layout.angle_increment_rad > 0.0) || !std::isfinite(layout.angle_increment_rad) ||
       layout.angle_increment_rad * static_cast<double>(layout.beam_count) > 2.0 * M_PI + 1e-6)
-    throw std::invalid_argument("laser scan: angular increment must be positive and the beams "
-                                "must span at most one revolution");
+    throw std::invalid_argument(
+        "laser scan: angular increment must be positive and the beams "
+        "must span at most one revolution");
   if (!std::isfinite(layout.angle_min_rad))
     throw std::invalid_argument("laser scan: first bearing must be finite");
   if (!(layout.range_max_m > layout.range_min_m) || !std::isfinite(layout.range_max_m))

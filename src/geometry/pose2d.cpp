@@ -27,7 +27,9 @@ Eigen::Vector2d Pose2D::Transform(const Eigen::Vector2d& point) const {
   return {x_m + c * point.x() - s * point.y(), y_m + s * point.x() + c * point.y()};
 }
 
-Pose2D Between(const Pose2D& from, const Pose2D& to) { return from.Inverse() * to; }
+Pose2D Between(const Pose2D& from, const Pose2D& to) {
+  return from.Inverse() * to;
+}
 
 std::ostream& operator<<(std::ostream& os, const Pose2D& pose) {
   return os << "(" << pose.x_m << ", " << pose.y_m << ", " << pose.yaw_rad << ")";

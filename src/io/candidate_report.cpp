@@ -9,9 +9,9 @@ namespace scanloc {
 
 void PrintCandidateTable(std::ostream& out, const CandidateEvaluationResult& result) {
   char line[256];
-  std::snprintf(line, sizeof line, "%-8s %9s %9s %10s %6s %6s %8s %11s %8s %8s %-5s %s\n", "posture",
-                "x [m]", "y [m]", "θ [rad]", "MP", "NVP", "EV [m]", "√Disp [m]", "cost", "LD-EV",
-                "valid", "reason");
+  std::snprintf(line, sizeof line, "%-8s %9s %9s %10s %6s %6s %8s %11s %8s %8s %-5s %s\n",
+                "posture", "x [m]", "y [m]", "θ [rad]", "MP", "NVP", "EV [m]", "√Disp [m]", "cost",
+                "LD-EV", "valid", "reason");
   out << line;
   for (const auto& c : result.candidates) {
     const Pose2D& p = c.candidate.T_world_robot;
@@ -24,8 +24,7 @@ void PrintCandidateTable(std::ostream& out, const CandidateEvaluationResult& res
                                                : ToString(c.verdict));
     out << line;
   }
-  if (result.best >= 0)
-    out << "best: " << result.candidates[result.best].candidate.label << '\n';
+  if (result.best >= 0) out << "best: " << result.candidates[result.best].candidate.label << '\n';
   for (const auto& problem : result.problems) out << "problem: " << problem << '\n';
 }
 
@@ -33,8 +32,8 @@ void PrintRefinementTable(std::ostream& out, const CandidateRefinementResult& re
   char line[320];
   std::snprintf(line, sizeof line,
                 "%-8s %-6s %9s %9s %10s %27s %13s %19s %11s %8s %6s %8s %-5s %s\n", "posture",
-                "stage", "x [m]", "y [m]", "θ [rad]", "correction [mm, mm, mrad]", "MP",
-                "EV [m]", "√Disp [m]", "LD-EV", "iters", "time[ms]", "valid", "reason");
+                "stage", "x [m]", "y [m]", "θ [rad]", "correction [mm, mm, mrad]", "MP", "EV [m]",
+                "√Disp [m]", "LD-EV", "iters", "time[ms]", "valid", "reason");
   out << line;
   for (const auto& c : result.candidates) {
     const Pose2D& a = c.candidate.T_world_robot;
@@ -45,8 +44,8 @@ void PrintRefinementTable(std::ostream& out, const CandidateRefinementResult& re
                   r.test_before.match_pairs, r.test_before.expect_value_m,
                   std::sqrt(r.test_before.dispersion_m2), r.distance_before.expect_value_m);
     out << line;
-    std::string reason = c.verdict == Verdict::kValid ? "rank " + std::to_string(c.rank)
-                                                      : ToString(c.verdict);
+    std::string reason =
+        c.verdict == Verdict::kValid ? "rank " + std::to_string(c.rank) : ToString(c.verdict);
     if (!r.converged) reason += "; not converged";
     if (r.degenerate) reason += "; degenerate: " + r.degeneracy;
     std::snprintf(line, sizeof line,
@@ -67,9 +66,9 @@ void PrintRefinementTable(std::ostream& out, const CandidateRefinementResult& re
 }
 
 nlohmann::json ToJson(const LikelihoodTestResult& t) {
-  return {{"valid_pairs", t.valid_pairs},       {"match_pairs", t.match_pairs},
-          {"match_ratio", t.MatchRatio()},      {"expect_value_m", t.expect_value_m},
-          {"dispersion_m2", t.dispersion_m2},   {"sqrt_dispersion_m", std::sqrt(t.dispersion_m2)},
+  return {{"valid_pairs", t.valid_pairs},     {"match_pairs", t.match_pairs},
+          {"match_ratio", t.MatchRatio()},    {"expect_value_m", t.expect_value_m},
+          {"dispersion_m2", t.dispersion_m2}, {"sqrt_dispersion_m", std::sqrt(t.dispersion_m2)},
           {"histogram", t.histogram}};
 }
 

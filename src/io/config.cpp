@@ -1,11 +1,11 @@
 #include "scanloc/io/config.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <limits>
-#include <type_traits>
 #include <nlohmann/json.hpp>
-#include <algorithm>
 #include <stdexcept>
+#include <type_traits>
 
 namespace scanloc {
 namespace {
@@ -33,8 +33,8 @@ class Section {
         if (!it->is_boolean()) throw std::runtime_error(where + ": expected true or false");
         field = it->template get<bool>();
       } else if constexpr (std::is_same_v<T, std::vector<double>>) {
-        if (!it->is_array() || !std::all_of(it->begin(), it->end(),
-                                            [](const json& v) { return v.is_number(); }))
+        if (!it->is_array() ||
+            !std::all_of(it->begin(), it->end(), [](const json& v) { return v.is_number(); }))
           throw std::runtime_error(where + ": expected an array of numbers");
         field = it->template get<std::vector<double>>();
       } else if constexpr (std::is_same_v<T, std::string>) {
@@ -163,7 +163,8 @@ void ApplyJson(const json& root, Config& c) {
       .Field("insert_unvalidated", c.session.insert_unvalidated)
       .Field("initial_pose", initial)
       .RefuseUnknown();
-  if (initial.size() != 3) throw std::runtime_error("config.session.initial_pose: expected [x, y, yaw]");
+  if (initial.size() != 3)
+    throw std::runtime_error("config.session.initial_pose: expected [x, y, yaw]");
   c.session.initial_pose = {initial[0], initial[1], initial[2]};
   top.RefuseUnknown();
 }
@@ -241,7 +242,8 @@ json ToJson(const Config& c) {
         {"insert_rotation_rad", c.session.insert_rotation_rad},
         {"insert_unvalidated", c.session.insert_unvalidated},
         {"initial_pose",
-         {c.session.initial_pose.x_m, c.session.initial_pose.y_m, c.session.initial_pose.yaw_rad}}}},
+         {c.session.initial_pose.x_m, c.session.initial_pose.y_m,
+          c.session.initial_pose.yaw_rad}}}},
   };
 }
 

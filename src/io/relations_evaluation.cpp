@@ -7,7 +7,7 @@
 #include <optional>
 #include <stdexcept>
 
-#include "scanloc/io/parse_error.hpp"
+#include "scanloc/common/parse_error.hpp"
 
 namespace scanloc {
 namespace {

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "scanloc/io/atomic_file.hpp"
+#include "scanloc/common/atomic_file.hpp"
 #include "scanloc/io/candidate_report.hpp"
 #include "scanloc/maps/point_map_io.hpp"
 
@@ -29,15 +29,16 @@ nlohmann::json ToJson(const IterationRecord& r) {
                           {"total", 1e3 * r.total_s}}}};
   if (!r.candidates.candidates.empty()) {
     out["candidates"] = ToJson(r.candidates)["candidates"];
-    out["chosen"] = r.chosen >= 0 ? nlohmann::json(r.candidates.candidates[r.chosen].candidate.label)
-                                  : nlohmann::json(nullptr);
+    out["chosen"] = r.chosen >= 0
+                        ? nlohmann::json(r.candidates.candidates[r.chosen].candidate.label)
+                        : nlohmann::json(nullptr);
     out["problems"] = r.candidates.problems;
   }
   if (r.refinement) {
     out["refinement"] = ToJson(*r.refinement);
     const Pose2D correction = Between(r.prediction, r.T_world_robot);
-    out["correction_from_prediction_mm_mm_mrad"] = {
-        1e3 * correction.x_m, 1e3 * correction.y_m, 1e3 * correction.yaw_rad};
+    out["correction_from_prediction_mm_mm_mrad"] = {1e3 * correction.x_m, 1e3 * correction.y_m,
+                                                    1e3 * correction.yaw_rad};
   }
   return out;
 }
@@ -46,8 +47,7 @@ RunFolder::RunFolder(const std::string& directory) : directory_(directory) {
   std::error_code error;
   std::filesystem::create_directories(directory_, error);
   if (error || !std::filesystem::is_directory(directory_))
-    throw std::runtime_error("cannot create the run folder " + directory_ + ": " +
-                             error.message());
+    throw std::runtime_error("cannot create the run folder " + directory_ + ": " + error.message());
   records_.open(Path("iterations.jsonl"), std::ios::trunc);
   if (!records_) throw std::runtime_error("cannot write " + Path("iterations.jsonl"));
 }
@@ -63,9 +63,8 @@ void RunFolder::Finish(const PointMap& map, nlohmann::json summary) {
   records_.close();
   WriteTumTrajectory(Path("trajectory.tum"), trajectory_);
   SavePointMapPcd(map, Path("map.pcd"));
-  summary["files"] = {{"iterations", "iterations.jsonl"},
-                      {"trajectory", "trajectory.tum"},
-                      {"map", "map.pcd"}};
+  summary["files"] = {
+      {"iterations", "iterations.jsonl"}, {"trajectory", "trajectory.tum"}, {"map", "map.pcd"}};
   WriteFileAtomically(Path("summary.json"),
                       [&](std::ostream& out) { out << summary.dump(2) << '\n'; });
 }

@@ -1,23 +1,24 @@
 #include "scanloc/io/scan_file.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <optional>
 #include <sstream>
-#include <algorithm>
-#include <cstdlib>
 
-#include "scanloc/io/atomic_file.hpp"
+#include "scanloc/common/atomic_file.hpp"
+#include "scanloc/common/parse_error.hpp"
 #include "scanloc/io/carmen_log.hpp"
-#include "scanloc/io/parse_error.hpp"
 
 namespace scanloc {
 namespace {
 
 bool EndsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 // Reads numbers for a `ranges` or `reflectance` block, across lines, until `count` are read.
@@ -67,7 +68,8 @@ LaserScan ReadScanFile(const std::string& path) {
       continue;
     }
     auto value = [&](const std::string& what) {
-      if (fields.size() != 2) throw ParseError(path, number, "expected '" + key + " <" + what + ">'");
+      if (fields.size() != 2)
+        throw ParseError(path, number, "expected '" + key + " <" + what + ">'");
       return ParseFiniteDouble(fields[1], path, number, what);
     };
     if (key == "beams") {
@@ -153,7 +155,8 @@ LaserScan LoadScan(const std::string& path, std::size_t carmen_index) {
   for (const char* suffix : {".clf", ".clf.gz", ".log", ".log.gz"})
     if (EndsWith(path, suffix)) return ReadCarmenScan(path, carmen_index);
   if (carmen_index != 0)
-    throw std::runtime_error(path + ": a scan index is only meaningful for CARMEN logs "
+    throw std::runtime_error(path +
+                             ": a scan index is only meaningful for CARMEN logs "
                              "(.clf, .clf.gz, .log, .log.gz)");
   return ReadScanFile(path);
 }

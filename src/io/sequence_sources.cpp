@@ -6,8 +6,8 @@
 #include <iomanip>
 #include <nlohmann/json.hpp>
 
-#include "scanloc/io/atomic_file.hpp"
-#include "scanloc/io/parse_error.hpp"
+#include "scanloc/common/atomic_file.hpp"
+#include "scanloc/common/parse_error.hpp"
 
 namespace scanloc {
 namespace {
@@ -15,7 +15,8 @@ namespace {
 using nlohmann::json;
 
 bool EndsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 Pose2D ParsePose(const json& value, const std::string& path, std::size_t line, const char* what) {
@@ -28,7 +29,9 @@ Pose2D ParsePose(const json& value, const std::string& path, std::size_t line, c
   return pose;
 }
 
-json PoseJson(const Pose2D& p) { return json::array({p.x_m, p.y_m, p.yaw_rad}); }
+json PoseJson(const Pose2D& p) {
+  return json::array({p.x_m, p.y_m, p.yaw_rad});
+}
 
 double Number(const json& object, const char* key, const std::string& path, std::size_t line,
               std::optional<double> fallback = std::nullopt) {
@@ -48,9 +51,12 @@ std::vector<double> Values(const json& array, const std::string& path, std::size
   std::vector<double> values;
   values.reserve(array.size());
   for (const auto& v : array) {
-    if (v.is_null()) values.push_back(-1.0);
-    else if (v.is_number()) values.push_back(v.get<double>());
-    else throw ParseError(path, line, std::string(what) + ": expected numbers (or null)");
+    if (v.is_null())
+      values.push_back(-1.0);
+    else if (v.is_number())
+      values.push_back(v.get<double>());
+    else
+      throw ParseError(path, line, std::string(what) + ": expected numbers (or null)");
   }
   return values;
 }

@@ -7,8 +7,8 @@
 #include <ostream>
 #include <stdexcept>
 
-#include "scanloc/io/atomic_file.hpp"
-#include "scanloc/io/parse_error.hpp"
+#include "scanloc/common/atomic_file.hpp"
+#include "scanloc/common/parse_error.hpp"
 
 namespace scanloc {
 namespace {

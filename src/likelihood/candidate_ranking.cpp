@@ -34,11 +34,16 @@ void ValidationOptions::Validate() const {
 
 const char* ToString(Verdict verdict) {
   switch (verdict) {
-    case Verdict::kValid: return "valid";
-    case Verdict::kNoValidPairs: return "no valid pairs";
-    case Verdict::kLowMatchRatio: return "rule 1: match ratio too low";
-    case Verdict::kHighExpectValue: return "rule 2: expected value too high";
-    case Verdict::kHighCost: return "rule 3: cost much higher than the best";
+    case Verdict::kValid:
+      return "valid";
+    case Verdict::kNoValidPairs:
+      return "no valid pairs";
+    case Verdict::kLowMatchRatio:
+      return "rule 1: match ratio too low";
+    case Verdict::kHighExpectValue:
+      return "rule 2: expected value too high";
+    case Verdict::kHighCost:
+      return "rule 3: cost much higher than the best";
   }
   return "?";
 }
@@ -106,7 +111,8 @@ CandidateRanking RankCandidates(const std::vector<LikelihoodTestResult>& tests,
     if (wins[i] != wins[j]) return wins[i] > wins[j];
     return ranking.candidates[i].cost < ranking.candidates[j].cost;
   });
-  for (std::size_t r = 0; r < order.size(); ++r) ranking.candidates[order[r]].rank = static_cast<int>(r);
+  for (std::size_t r = 0; r < order.size(); ++r)
+    ranking.candidates[order[r]].rank = static_cast<int>(r);
   if (!order.empty()) ranking.best = order.front();
   return ranking;
 }

@@ -7,9 +7,12 @@ namespace scanloc {
 
 const char* ToString(RobustKernel kernel) {
   switch (kernel) {
-    case RobustKernel::kCauchy: return "cauchy";
-    case RobustKernel::kHuber: return "huber";
-    case RobustKernel::kTukey: return "tukey";
+    case RobustKernel::kCauchy:
+      return "cauchy";
+    case RobustKernel::kHuber:
+      return "huber";
+    case RobustKernel::kTukey:
+      return "tukey";
   }
   return "?";
 }
@@ -30,8 +33,10 @@ void LikelihoodDistanceOptions::Validate() const {
 double KernelLoss(RobustKernel kernel, double distance_m, double scale_m) {
   const double d = std::abs(distance_m), c = scale_m, u = d / c;
   switch (kernel) {
-    case RobustKernel::kCauchy: return 0.5 * c * c * std::log1p(u * u);
-    case RobustKernel::kHuber: return d <= c ? 0.5 * d * d : c * (d - 0.5 * c);
+    case RobustKernel::kCauchy:
+      return 0.5 * c * c * std::log1p(u * u);
+    case RobustKernel::kHuber:
+      return d <= c ? 0.5 * d * d : c * (d - 0.5 * c);
     case RobustKernel::kTukey: {
       if (d >= c) return c * c / 6.0;
       const double v = 1.0 - u * u;
@@ -44,8 +49,10 @@ double KernelLoss(RobustKernel kernel, double distance_m, double scale_m) {
 double KernelWeight(RobustKernel kernel, double distance_m, double scale_m) {
   const double d = std::abs(distance_m), c = scale_m, u = d / c;
   switch (kernel) {
-    case RobustKernel::kCauchy: return 1.0 / (1.0 + u * u);
-    case RobustKernel::kHuber: return d <= c ? 1.0 : c / d;
+    case RobustKernel::kCauchy:
+      return 1.0 / (1.0 + u * u);
+    case RobustKernel::kHuber:
+      return d <= c ? 1.0 : c / d;
     case RobustKernel::kTukey: {
       if (d >= c) return 0.0;
       const double v = 1.0 - u * u;

@@ -47,7 +47,7 @@ LikelihoodTestResult RunLikelihoodTest(const LaserScan& scan, const SimulatedSca
   }
   double first = 0.0, second = 0.0;
   for (int k = 0; k < ns; ++k) {
-    result.match_pairs += result.histogram[k];  // (3.8)
+    result.match_pairs += result.histogram[k];                           // (3.8)
     const double centre = k < ns - 1 ? options.slot_width_m * (k + 0.5)  // (3.9) slot centres
                                      : options.LastSlotDistance();       // Δmax for the last
     first += result.histogram[k] * centre;

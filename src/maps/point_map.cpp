@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 #include <optional>
+#include <stdexcept>
 #include <unordered_map>
 
 #include <Eigen/Geometry>
@@ -30,8 +30,9 @@ struct CloudAdaptor {
   }
 };
 
-using KdTree = nanoflann::KDTreeSingleIndexDynamicAdaptor<
-    nanoflann::L2_Simple_Adaptor<double, CloudAdaptor>, CloudAdaptor, 2, std::uint32_t>;
+using KdTree =
+    nanoflann::KDTreeSingleIndexDynamicAdaptor<nanoflann::L2_Simple_Adaptor<double, CloudAdaptor>,
+                                               CloudAdaptor, 2, std::uint32_t>;
 
 std::int64_t CellKey(const Eigen::Vector2d& p, double cell_size_m) {
   const auto ix = static_cast<std::int64_t>(std::floor(p.x() / cell_size_m));
@@ -69,9 +70,15 @@ PointMap::~PointMap() = default;
 PointMap::PointMap(PointMap&&) noexcept = default;
 PointMap& PointMap::operator=(PointMap&&) noexcept = default;
 
-std::size_t PointMap::size() const { return storage_->points.size(); }
-const Eigen::Vector2d& PointMap::point(std::size_t i) const { return storage_->points[i]; }
-double PointMap::spacing(std::size_t i) const { return storage_->spacings[i]; }
+std::size_t PointMap::size() const {
+  return storage_->points.size();
+}
+const Eigen::Vector2d& PointMap::point(std::size_t i) const {
+  return storage_->points[i];
+}
+double PointMap::spacing(std::size_t i) const {
+  return storage_->spacings[i];
+}
 Eigen::Vector2d PointMap::normal(std::size_t i) const {
   return storage_->normals[i].cast<double>();
 }
@@ -129,8 +136,7 @@ std::size_t PointMap::Add(const std::vector<Eigen::Vector2d>& points_world,
         s.occupied_cells.emplace(CellKey(p, c), static_cast<std::uint32_t>(s.points.size()));
     }
     Eigen::Vector2f normal = Eigen::Vector2f::Zero();
-    if (!normals_world.empty() && normals_world[i].allFinite() &&
-        normals_world[i].norm() > 0.5)
+    if (!normals_world.empty() && normals_world[i].allFinite() && normals_world[i].norm() > 0.5)
       normal = normals_world[i].normalized().cast<float>();
     if (options_.cell_size_m > 0.0 && !inserted_new) {
       const std::uint32_t j = existing;
@@ -198,7 +204,9 @@ std::size_t PointMap::InsertScan(const LaserScan& scan, const Pose2D& T_world_la
   return Insert(points, spacings, normals);
 }
 
-double PointMap::MaxIndexDisplacement() const { return options_.cell_size_m * std::sqrt(2.0); }
+double PointMap::MaxIndexDisplacement() const {
+  return options_.cell_size_m * std::sqrt(2.0);
+}
 
 std::vector<std::pair<std::uint32_t, double>> PointMap::RadiusSearch(const Eigen::Vector2d& centre,
                                                                      double radius_m) const {

@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "scanloc/io/atomic_file.hpp"
+#include "scanloc/common/atomic_file.hpp"
 
 namespace scanloc {
 namespace {
@@ -144,8 +144,9 @@ std::size_t ReadPcd(const std::string& path, pcl::PCLPointCloud2& cloud, const F
 void SavePointMapPcd(const PointMap& map, const std::string& path) {
   constexpr std::uint32_t kPointStep = 6 * sizeof(float);
   pcl::PCLPointCloud2 cloud;
-  cloud.fields = {FloatField("x", 0),        FloatField("y", 4),        FloatField("z", 8),
-                  FloatField("spacing", 12), FloatField("normal_x", 16), FloatField("normal_y", 20)};
+  cloud.fields = {FloatField("x", 0),         FloatField("y", 4),
+                  FloatField("z", 8),         FloatField("spacing", 12),
+                  FloatField("normal_x", 16), FloatField("normal_y", 20)};
   cloud.width = static_cast<std::uint32_t>(map.size());
   cloud.height = 1;
   cloud.point_step = kPointStep;

@@ -64,9 +64,12 @@ ceres::LossFunction* MakeLoss(const LikelihoodDistanceOptions& distance) {
   // (up to a constant factor).
   const double c = distance.scale_m;
   switch (distance.kernel) {
-    case RobustKernel::kCauchy: return new ceres::CauchyLoss(c);
-    case RobustKernel::kHuber: return new ceres::HuberLoss(c);
-    case RobustKernel::kTukey: return new ceres::TukeyLoss(c);
+    case RobustKernel::kCauchy:
+      return new ceres::CauchyLoss(c);
+    case RobustKernel::kHuber:
+      return new ceres::HuberLoss(c);
+    case RobustKernel::kTukey:
+      return new ceres::TukeyLoss(c);
   }
   return nullptr;
 }
@@ -74,7 +77,8 @@ ceres::LossFunction* MakeLoss(const LikelihoodDistanceOptions& distance) {
 // A line through the k nearest map points of the hit, if they are close and collinear enough.
 bool FitPointLine(const PointMap& points, const Eigen::Vector2d& hit,
                   const CeresRefinerOptions& options, SurfaceLine& line) {
-  const auto neighbours = points.KNearest(hit, static_cast<std::size_t>(options.line_fit_neighbours));
+  const auto neighbours =
+      points.KNearest(hit, static_cast<std::size_t>(options.line_fit_neighbours));
   if (neighbours.size() < 2) return false;
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
   std::size_t used = 0;
@@ -104,9 +108,8 @@ bool FitPointLine(const PointMap& points, const Eigen::Vector2d& hit,
 
 // `sim_valid`: the simulated scan exists and beam has a hit there.
 bool SurfaceLineOfBeam(const MapView& map, const SimulatedScan& sim, std::size_t beam,
-                       bool sim_valid, const Eigen::Vector2d& hit,
-                       const Eigen::Vector2d& end_point, const CeresRefinerOptions& options,
-                       SurfaceLine& line) {
+                       bool sim_valid, const Eigen::Vector2d& hit, const Eigen::Vector2d& end_point,
+                       const CeresRefinerOptions& options, SurfaceLine& line) {
   if (sim_valid && sim.hit_source[beam] == HitSource::kSegment) {
     const Segment& s = map.lines->segments[sim.hit_index[beam]];
     const Eigen::Vector2d d = s.b - s.a;
@@ -175,8 +178,8 @@ void EstimateUncertainty(BuiltProblem& built, const CeresRefinerOptions& options
                          RefinementResult& result) {
   if (built.residual_count < 4) {
     result.degenerate = true;
-    result.degeneracy = "too few beams constrain the posture (" +
-                        std::to_string(built.residual_count) + ")";
+    result.degeneracy =
+        "too few beams constrain the posture (" + std::to_string(built.residual_count) + ")";
     return;
   }
   double cost = 0.0;
@@ -226,9 +229,12 @@ void EstimateUncertainty(BuiltProblem& built, const CeresRefinerOptions& options
 
 const char* ToString(IncidenceWeighting weighting) {
   switch (weighting) {
-    case IncidenceWeighting::kNone: return "none";
-    case IncidenceWeighting::kCosine: return "cosine";
-    case IncidenceWeighting::kGate: return "gate";
+    case IncidenceWeighting::kNone:
+      return "none";
+    case IncidenceWeighting::kCosine:
+      return "cosine";
+    case IncidenceWeighting::kGate:
+      return "gate";
   }
   return "?";
 }
@@ -331,8 +337,7 @@ RefinementResult RefineCeres(const MapView& map, const LaserScan& scan,
     parameters[2] = pose.yaw_rad;
   }
   EstimateUncertainty(built, options, result);
-  result.time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 

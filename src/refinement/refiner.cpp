@@ -6,9 +6,12 @@ namespace scanloc {
 
 const char* ToString(RefinementMethod method) {
   switch (method) {
-    case RefinementMethod::kCeres: return "ceres";
-    case RefinementMethod::kErrorDescent: return "error-descent";
-    case RefinementMethod::kIcp: return "icp";
+    case RefinementMethod::kCeres:
+      return "ceres";
+    case RefinementMethod::kErrorDescent:
+      return "error-descent";
+    case RefinementMethod::kIcp:
+      return "icp";
   }
   return "?";
 }

@@ -51,15 +51,15 @@ Session::Session(SessionOptions options, ScoringOptions scoring, ValidationOptio
 bool Session::MovedMoreThan(const Pose2D& from, const Pose2D& to, double translation_m,
                             double rotation_rad) const {
   const Pose2D delta = Between(from, to);
-  return std::hypot(delta.x_m, delta.y_m) > translation_m ||
-         std::abs(delta.yaw_rad) > rotation_rad;
+  return std::hypot(delta.x_m, delta.y_m) > translation_m || std::abs(delta.yaw_rad) > rotation_rad;
 }
 
-std::vector<Candidate> Session::MakeCandidates(const Pose2D& prediction,
-                                               const Iteration& iteration, bool turning) const {
+std::vector<Candidate> Session::MakeCandidates(const Pose2D& prediction, const Iteration& iteration,
+                                               bool turning) const {
   std::vector<Candidate> candidates{{prediction, "odometry"}};
-  const int steps = !turning ? 0 : static_cast<int>(
-      std::floor(options_.heading_spread_rad / options_.heading_step_rad + 1e-3));
+  const int steps = !turning ? 0
+                             : static_cast<int>(std::floor(
+                                   options_.heading_spread_rad / options_.heading_step_rad + 1e-3));
   for (int s = 1; s <= steps; ++s)
     for (const int sign : {-1, 1}) {
       const double offset = sign * s * options_.heading_step_rad;
@@ -92,8 +92,7 @@ IterationRecord Session::Process(const Iteration& iteration) {
   const bool map_empty = map.empty();
   const bool moved = count_ == 0 || !iteration.odometry ||
                      MovedMoreThan(last_localised_odometry_, *iteration.odometry,
-                                   options_.localise_translation_m,
-                                   options_.localise_rotation_rad);
+                                   options_.localise_translation_m, options_.localise_rotation_rad);
   if (map_empty && iteration.external_candidates.empty()) {
     // Nothing to localise against: the posture is the prediction (the origin at first, §3.2.2).
     record.first = count_ == 0;
@@ -106,13 +105,12 @@ IterationRecord Session::Process(const Iteration& iteration) {
     record.validated = false;
   } else {
     const auto evaluate_start = std::chrono::steady_clock::now();
-    const bool turning =
-        !iteration.odometry ||
-        std::abs(Between(last_localised_odometry_, *iteration.odometry).yaw_rad) >
-            options_.heading_candidates_min_turn_rad;
-    record.candidates = EvaluateCandidates(
-        map, iteration.scan, MakeCandidates(prediction, iteration, turning), mounting_, scoring_,
-        validation_);
+    const bool turning = !iteration.odometry ||
+                         std::abs(Between(last_localised_odometry_, *iteration.odometry).yaw_rad) >
+                             options_.heading_candidates_min_turn_rad;
+    record.candidates =
+        EvaluateCandidates(map, iteration.scan, MakeCandidates(prediction, iteration, turning),
+                           mounting_, scoring_, validation_);
     record.evaluate_s = SecondsSince(evaluate_start);
     // The best valid candidate; when none is valid, the cheapest by (3.11), flagged below.
     record.chosen = record.candidates.best;

@@ -45,8 +45,8 @@ LaserScan SimulateLaser(const LineMap& world, const Pose2D& T_world_laser,
     // Past the reliable range the echo is lost with a probability growing linearly to 1 at the
     // maximum range.
     if (range > options.reliable_range_m && options.range_max_m > options.reliable_range_m &&
-        unreliable < (range - options.reliable_range_m) /
-                         (options.range_max_m - options.reliable_range_m))
+        unreliable <
+            (range - options.reliable_range_m) / (options.range_max_m - options.reliable_range_m))
       continue;
     const double sigma = options.range_noise_m + options.range_noise_per_m * range;
     const double noisy = range + sigma * noise;

@@ -40,7 +40,8 @@ void ForEachBeamInInterval(const ScanLayout& layout, std::size_t beam_count, dou
     const double lo = start + shift - layout.angle_min_rad;
     const double hi = lo + span_rad;
     const double first = std::max(0.0, std::ceil(lo / inc - 1e-9));
-    const double last = std::min(static_cast<double>(beam_count) - 1.0, std::floor(hi / inc + 1e-9));
+    const double last =
+        std::min(static_cast<double>(beam_count) - 1.0, std::floor(hi / inc + 1e-9));
     for (double k = first; k <= last; k += 1.0) visit(static_cast<std::size_t>(k));
   }
 }
@@ -86,22 +87,21 @@ void OfferPoint(SimulatedScan& sim, const PointMap& map, const Pose2D& T_world_l
   const Eigen::Vector2d normal = map.normal(i);
   const bool surfel = normal.squaredNorm() > 0.0;
   const double patch_half_m = std::max(0.5 * options.footprint_factor * map.spacing(i), 1e-3);
-  ForEachBeamInInterval(layout, sim.size(), bearing - half_width, 2.0 * half_width,
-                        [&](std::size_t beam) {
-                          double beam_range = range;
-                          if (surfel) {
-                            const double phi = T_world_laser.yaw_rad + layout.Bearing(beam);
-                            const Eigen::Vector2d u(std::cos(phi), std::sin(phi));
-                            const double cos_incidence = normal.dot(u);
-                            if (std::abs(cos_incidence) > 0.1) {
-                              const double t = normal.dot(delta) / cos_incidence;
-                              if (!(t > 0.0) || (t * u - delta).norm() > patch_half_m) return;
-                              beam_range = t;
-                            }
-                          }
-                          Offer(sim, beam, beam_range, HitSource::kPoint,
-                                static_cast<std::int32_t>(i));
-                        });
+  ForEachBeamInInterval(
+      layout, sim.size(), bearing - half_width, 2.0 * half_width, [&](std::size_t beam) {
+        double beam_range = range;
+        if (surfel) {
+          const double phi = T_world_laser.yaw_rad + layout.Bearing(beam);
+          const Eigen::Vector2d u(std::cos(phi), std::sin(phi));
+          const double cos_incidence = normal.dot(u);
+          if (std::abs(cos_incidence) > 0.1) {
+            const double t = normal.dot(delta) / cos_incidence;
+            if (!(t > 0.0) || (t * u - delta).norm() > patch_half_m) return;
+            beam_range = t;
+          }
+        }
+        Offer(sim, beam, beam_range, HitSource::kPoint, static_cast<std::int32_t>(i));
+      });
 }
 
 }  // namespace
@@ -148,7 +148,8 @@ SimulatedScan SimulateFromPoints(const PointMap& map, const ScanLayout& layout,
   const double patch_margin_m = 0.5 * options.footprint_factor * map.options().max_point_spacing_m;
   const double max_range_m = layout.range_max_m;
   double inner_m = 0.0;
-  for (double radius_m = std::min(max_range_m, 4.0);; radius_m = std::min(max_range_m, 2 * radius_m)) {
+  for (double radius_m = std::min(max_range_m, 4.0);;
+       radius_m = std::min(max_range_m, 2 * radius_m)) {
     const double inner2 = inner_m * inner_m;
     for (const auto& [index, squared_distance] :
          map.RadiusSearch(T_world_laser.Translation(), radius_m))

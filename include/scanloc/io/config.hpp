@@ -17,13 +17,13 @@
 namespace scanloc {
 
 struct Config {
-  ScoringOptions scoring;         // likelihood_test, likelihood_distance, point_simulation
-  ValidationOptions validation;   // validation
-  PointMapOptions point_map;      // point_map
+  ScoringOptions scoring;           // likelihood_test, likelihood_distance, point_simulation
+  ValidationOptions validation;     // validation
+  PointMapOptions point_map;        // point_map
   double line_sampling_m = 0.0075;  // spacing when a line map is sampled to points (§3.2.2)
-  LaserMounting mounting;         // mounting: {"x_m", "y_m", "yaw_rad"} of the laser on the robot
-  RefinerOptions refiner;         // refinement: {"method", "ceres": {...}, "error_descent": {...}}
-  SessionOptions session;         // session
+  LaserMounting mounting;           // mounting: {"x_m", "y_m", "yaw_rad"} of the laser on the robot
+  RefinerOptions refiner;  // refinement: {"method", "ceres": {...}, "error_descent": {...}}
+  SessionOptions session;  // session
 
   // Throws std::invalid_argument naming the first option out of its domain.
   void Validate() const;

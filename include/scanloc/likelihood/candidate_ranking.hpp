@@ -11,8 +11,8 @@ namespace scanloc {
 struct ValidationOptions {
   double min_match_ratio = 0.3;      // rule 1: MatchPairs/NVP must exceed this (0.2 in the factory)
   double max_expect_value_m = 0.05;  // rule 2: E_max, ExpectValue must stay below it
-  double alpha_m = 0.1;              // (3.11) α: the cost charged per unit ratio of non-match pairs
-  double max_cost_ratio = 1.5;       // rule 3: rejected when cost > max_cost_ratio · best cost
+  double alpha_m = 0.1;         // (3.11) α: the cost charged per unit ratio of non-match pairs
+  double max_cost_ratio = 1.5;  // rule 3: rejected when cost > max_cost_ratio · best cost
   // Rules 4 and 5: "a << b" reads as much_less_factor · a < b.
   double much_less_factor = 3.0;
   // Throws std::invalid_argument naming the first option out of its domain.
@@ -21,10 +21,10 @@ struct ValidationOptions {
 
 enum class Verdict {
   kValid,
-  kNoValidPairs,       // nothing to compare: empty map view or all-invalid scan
-  kLowMatchRatio,      // rule 1
-  kHighExpectValue,    // rule 2
-  kHighCost,           // rule 3
+  kNoValidPairs,     // nothing to compare: empty map view or all-invalid scan
+  kLowMatchRatio,    // rule 1
+  kHighExpectValue,  // rule 2
+  kHighCost,         // rule 3
 };
 const char* ToString(Verdict verdict);
 
@@ -32,7 +32,7 @@ struct CandidateAssessment {
   LikelihoodTestResult test;
   double cost = 0.0;  // (3.11)
   Verdict verdict = Verdict::kValid;
-  int rank = -1;      // 0 for the best valid candidate; -1 when not valid
+  int rank = -1;  // 0 for the best valid candidate; -1 when not valid
 };
 
 struct CandidateRanking {

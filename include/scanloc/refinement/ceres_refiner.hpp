@@ -29,15 +29,15 @@ const char* ToString(PointAssociation association);
 PointAssociation ParsePointAssociation(const std::string& name);
 
 struct CeresRefinerOptions {
-  int max_outer_iterations = 15;          // re-simulations (new correspondences)
-  int max_solver_iterations = 20;         // Levenberg–Marquardt iterations per outer iteration
+  int max_outer_iterations = 15;   // re-simulations (new correspondences)
+  int max_solver_iterations = 20;  // Levenberg–Marquardt iterations per outer iteration
   // Converged when an outer step moves less than this and turns less than that. Real scans
   // re-pair a few beams at every step, so tighter values only add limit cycles.
   double translation_tolerance_m = 1e-3;
   double rotation_tolerance_rad = 1e-3;
   IncidenceWeighting incidence = IncidenceWeighting::kCosine;
   PointAssociation point_association = PointAssociation::kNearestEndpoint;
-  double max_incidence_rad = 1.2;         // kGate: beams more grazing than this (69°) are dropped
+  double max_incidence_rad = 1.2;  // kGate: beams more grazing than this (69°) are dropped
   // Pairs farther apart than this are left out of the problem (T_Map's role); ≤ 0 uses T_Map.
   double max_residual_m = 0.0;
   // Point maps: the k nearest points of the hit within a radius define its local line, unless

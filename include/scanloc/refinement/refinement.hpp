@@ -21,9 +21,9 @@ struct ScoringOptions {
 };
 
 struct RefinementResult {
-  Pose2D T_world_laser;        // the refined posture of the laser
-  bool converged = false;      // the method's own stopping criterion was met
-  int iterations = 0;          // outer iterations (Ceres: re-simulations; ED: steps examined)
+  Pose2D T_world_laser;    // the refined posture of the laser
+  bool converged = false;  // the method's own stopping criterion was met
+  int iterations = 0;      // outer iterations (Ceres: re-simulations; ED: steps examined)
   LikelihoodTestResult test_before, test_after;
   LikelihoodDistanceResult distance_before, distance_after;
   // Covariance of (x, y, θ) in m², m·rad, rad²; valid only when has_covariance.

@@ -19,7 +19,7 @@ struct CandidateEvaluation {
   LikelihoodDistanceResult distance;
   double cost = 0.0;  // (3.11)
   Verdict verdict = Verdict::kValid;
-  int rank = -1;      // 0 for the best valid candidate, -1 when not valid
+  int rank = -1;  // 0 for the best valid candidate, -1 when not valid
 };
 
 struct CandidateEvaluationResult {

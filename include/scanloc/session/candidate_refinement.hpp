@@ -11,10 +11,10 @@
 namespace scanloc {
 
 struct RefinedCandidate {
-  Candidate candidate;      // as given
-  Pose2D T_world_robot;     // refined
+  Candidate candidate;   // as given
+  Pose2D T_world_robot;  // refined
   RefinementResult refinement;
-  double cost = 0.0;        // (3.11) after refinement
+  double cost = 0.0;  // (3.11) after refinement
   Verdict verdict = Verdict::kValid;
   int rank = -1;
 };

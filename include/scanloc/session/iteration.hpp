@@ -13,9 +13,9 @@ namespace scanloc {
 struct Iteration {
   double timestamp_s = 0.0;
   LaserScan scan;
-  std::optional<Pose2D> odometry;            // T_odom_robot at the scan's time, when known
-  std::vector<Pose2D> external_candidates;   // T_world_robot postures from outside (if any)
-  std::string origin;                        // where it came from, e.g. "intel.clf.gz:1234"
+  std::optional<Pose2D> odometry;           // T_odom_robot at the scan's time, when known
+  std::vector<Pose2D> external_candidates;  // T_world_robot postures from outside (if any)
+  std::string origin;                       // where it came from, e.g. "intel.clf.gz:1234"
 };
 
 // Streams iterations one at a time, so that a session never holds the whole log.

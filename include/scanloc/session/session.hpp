@@ -33,8 +33,9 @@ struct SessionOptions {
   // did (metres, radians).
   double insert_translation_m = 0.1;
   double insert_rotation_rad = 0.087;
-  bool insert_unvalidated = false;  // let non-validated scans extend the map (off: they are flagged)
-  Pose2D initial_pose;              // T_world_robot of the first iteration (§3.2.2: by convention)
+  bool insert_unvalidated =
+      false;            // let non-validated scans extend the map (off: they are flagged)
+  Pose2D initial_pose;  // T_world_robot of the first iteration (§3.2.2: by convention)
   void Validate() const;
 };
 
@@ -43,17 +44,17 @@ struct IterationRecord {
   std::size_t index = 0;
   double timestamp_s = 0.0;
   std::string origin;
-  bool skipped = false;          // not localised: the robot had not moved enough
-  bool first = false;            // the first iteration of a session without a prior map
-  Pose2D prediction;             // odometry prediction, T_world_robot
+  bool skipped = false;  // not localised: the robot had not moved enough
+  bool first = false;    // the first iteration of a session without a prior map
+  Pose2D prediction;     // odometry prediction, T_world_robot
   CandidateEvaluationResult candidates;
-  int chosen = -1;               // the candidate that was refined
+  int chosen = -1;  // the candidate that was refined
   std::optional<RefinementResult> refinement;
-  Pose2D T_world_robot;          // the posture kept for this scan
+  Pose2D T_world_robot;               // the posture kept for this scan
   Verdict verdict = Verdict::kValid;  // rules 1–2 on the refined posture
   bool validated = false;
-  bool inserted = false;         // the scan extended the map
-  std::size_t map_points = 0;    // after this iteration
+  bool inserted = false;       // the scan extended the map
+  std::size_t map_points = 0;  // after this iteration
   double evaluate_s = 0.0, refine_s = 0.0, insert_s = 0.0, total_s = 0.0;
 };
 
@@ -85,9 +86,9 @@ class Session {
   LineMap line_map_;
   PointMap point_map_;
   std::size_t count_ = 0;
-  Pose2D last_pose_;                   // T_world_robot of the previous iteration
+  Pose2D last_pose_;  // T_world_robot of the previous iteration
   std::optional<Pose2D> last_odometry_;
-  Pose2D last_localised_odometry_;     // odometry at the last localised iteration
+  Pose2D last_localised_odometry_;  // odometry at the last localised iteration
   std::optional<Pose2D> last_inserted_pose_;
 };
 

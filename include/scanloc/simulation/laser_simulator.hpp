@@ -12,15 +12,15 @@
 namespace scanloc {
 
 struct LaserSimulatorOptions {
-  std::size_t beam_count = 2400;      // points per revolution (the Acuity's 2,400)
-  double fov_rad = 2.0 * M_PI;        // field of view, centred on the heading
-  double range_max_m = 20.0;          // no echo at or beyond this
-  double reliable_range_m = 10.0;     // beyond it returns go missing more and more often
-  double range_noise_m = 0.02;        // Gaussian range noise σ at short range
-  double range_noise_per_m = 0.001;   // σ grows by this per metre of range
-  double dropout_probability = 0.0;   // missing returns anywhere
-  // A sector of the sweep that hits the robot's own body, in the laser frame (empty when from ≥ to):
-  // those beams return body_range_m.
+  std::size_t beam_count = 2400;     // points per revolution (the Acuity's 2,400)
+  double fov_rad = 2.0 * M_PI;       // field of view, centred on the heading
+  double range_max_m = 20.0;         // no echo at or beyond this
+  double reliable_range_m = 10.0;    // beyond it returns go missing more and more often
+  double range_noise_m = 0.02;       // Gaussian range noise σ at short range
+  double range_noise_per_m = 0.001;  // σ grows by this per metre of range
+  double dropout_probability = 0.0;  // missing returns anywhere
+  // A sector of the sweep that hits the robot's own body, in the laser frame (empty when from ≥
+  // to): those beams return body_range_m.
   double body_from_rad = 0.0;
   double body_to_rad = 0.0;
   double body_range_m = 0.35;

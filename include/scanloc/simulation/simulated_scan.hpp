@@ -24,9 +24,9 @@ enum class HitSource : std::uint8_t { kNone, kSegment, kPoint };
 
 struct SimulatedScan {
   ScanLayout layout;
-  std::vector<double> ranges_m;        // kNoReturn where the beam meets nothing within range
-  std::vector<HitSource> hit_source;   // what each beam hit
-  std::vector<std::int32_t> hit_index; // segment or point index, -1 for none
+  std::vector<double> ranges_m;              // kNoReturn where the beam meets nothing within range
+  std::vector<HitSource> hit_source;         // what each beam hit
+  std::vector<std::int32_t> hit_index;       // segment or point index, -1 for none
   static constexpr double kNoReturn = -1.0;  // the trials' flag for "no data"
 
   std::size_t size() const { return ranges_m.size(); }

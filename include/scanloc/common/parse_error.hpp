@@ -1,5 +1,6 @@
 #pragma once
-// The error raised for bad data read from outside: it names the file, the line and what was expected.
+// The error raised for bad data read from outside: it names the file, the line and what was
+// expected.
 
 #include <stdexcept>
 #include <string>

@@ -1,4 +1,4 @@
-#include "scanloc/io/parse_error.hpp"
+#include "scanloc/common/parse_error.hpp"
 
 #include <cerrno>
 #include <cmath>

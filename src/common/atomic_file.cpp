@@ -1,4 +1,4 @@
-#include "scanloc/io/atomic_file.hpp"
+#include "scanloc/common/atomic_file.hpp"
 
 #include <unistd.h>
 
@@ -23,8 +23,7 @@ void CommitTemporaryFile(const std::string& temporary_path, const std::string& p
   }
 }
 
-void WriteFileAtomically(const std::string& path,
-                         const std::function<void(std::ostream&)>& write) {
+void WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
   const std::string temporary = TemporaryPathFor(path);
   {
     std::ofstream out(temporary);
