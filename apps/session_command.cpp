@@ -94,15 +94,14 @@ void RegisterSessionCommand(CLI::App& app) {
       return a->max_scans == 0 || !session || session->iterations() < a->max_scans;
     };
     while (!g_interrupted && wanted() && source->Next(iteration)) {
-      // The mounting is final once the first scan was read (CARMEN's PARAM precedes it).
       if (!session) {
+        // The mounting is final once the first scan was read (CARMEN's PARAM precedes it):
+        // --laser-offset, else the config's when it sets one, else the log's.
+        const Pose2D& configured = config.mounting.T_robot_laser;
+        const bool config_sets_mounting =
+            configured.x_m != 0.0 || configured.y_m != 0.0 || configured.yaw_rad != 0.0;
         const LaserMounting mounting =
-            a->laser_offset_m || config.mounting.T_robot_laser.x_m != 0.0 ||
-                    config.mounting.T_robot_laser.y_m != 0.0 ||
-                    config.mounting.T_robot_laser.yaw_rad != 0.0
-                ? (a->laser_offset_m ? LaserMounting{{*a->laser_offset_m, 0.0, 0.0}}
-                                     : config.mounting)
-                : source->mounting();
+            a->laser_offset_m || !config_sets_mounting ? source->mounting() : config.mounting;
         config.mounting = mounting;
         session = std::make_unique<Session>(config.session, config.scoring, config.validation,
                                             config.refiner, mounting, std::move(lines),

@@ -13,10 +13,15 @@
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "scanloc/io/scan_file.hpp"
+#include "scanloc/io/sequence_sources.hpp"
+#include "scanloc/io/trajectory.hpp"
+#include "scanloc/maps/point_map_io.hpp"
+#include "scanloc/simulation/laser_simulator.hpp"
 #include "test_support.hpp"
 
 extern char** environ;
@@ -333,6 +338,82 @@ TEST_F(CliTest, SimulateScanRefusesANonFinitePose) {
       Run({"simulate-scan", "--world", kMap, "--pose", "nan", "0", "0", "--out", out});
   ExpectCleanFailure(r, "pose");
   EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// A straight walk through the classroom: 30 scans 5 cm apart, exact odometry, written as a native
+// sequence with the truth; and the relations between consecutive true postures.
+struct WalkFiles {
+  std::string sequence, relations;
+};
+WalkFiles WriteClassroomWalk(const std::string& dir) {
+  const LineMap world = ReadLineMap(kMap);
+  LaserSimulatorOptions laser;
+  laser.beam_count = 720;
+  std::mt19937 rng(11);
+  WalkFiles files{dir + "/walk.seq.jsonl", dir + "/walk.relations"};
+  SequenceFileWriter writer(files.sequence, LaserMounting{});
+  std::ofstream relations(files.relations);
+  Pose2D previous;
+  for (int i = 0; i < 30; ++i) {
+    const Pose2D truth{1.5 + 0.05 * i, 3.0, 0.1};
+    Iteration it;
+    it.timestamp_s = 100.0 + 0.5 * i;
+    it.scan = SimulateLaser(world, truth, laser, rng);
+    it.odometry = Pose2D{0.05 * i, 0.0, 0.0};
+    writer.Write(it, truth);
+    if (i > 0) {
+      const Pose2D r = Between(previous, truth);
+      relations << it.timestamp_s - 0.5 << ' ' << it.timestamp_s << ' ' << r.x_m << ' ' << r.y_m
+                << " 0 0 0 " << r.yaw_rad << '\n';
+    }
+    previous = truth;
+  }
+  writer.Close();
+  return files;
+}
+
+TEST_F(CliTest, SessionOnANativeSequenceWritesCompleteOutputsThatEvaluate) {
+  const WalkFiles walk = WriteClassroomWalk(dir_);
+  const std::string run = dir_ + "/run";
+  const RunResult r = Run({"session", "--log", walk.sequence, "--out", run, "--initial-pose", "1.5",
+                           "3.0", "0.1", "--quiet"});
+  ASSERT_TRUE(r.exited && r.exit_code == 0) << r;
+  // One JSON record per iteration, the localised ones with their candidates and moments.
+  std::ifstream records(run + "/iterations.jsonl");
+  int lines = 0, localised = 0;
+  for (std::string line; std::getline(records, line); ++lines) {
+    const auto record = nlohmann::json::parse(line);
+    if (!record["skipped"].get<bool>() && !record["first"].get<bool>()) {
+      ++localised;
+      EXPECT_EQ(record["candidates"].at(0)["likelihood_test"]["histogram"].size(), 20u);
+    }
+  }
+  EXPECT_EQ(lines, 30);
+  // Steps of 5 cm against a threshold of "more than 5 cm": at least every other scan is localised.
+  EXPECT_GE(localised, 14);
+  const auto summary = nlohmann::json::parse(ReadText(run + "/summary.json"));
+  EXPECT_EQ(summary["iterations"], 30);
+  EXPECT_FALSE(summary["interrupted"].get<bool>());
+  EXPECT_GT(LoadPointMapPcd(run + "/map.pcd").size(), 100u);
+  EXPECT_EQ(ReadTumTrajectory(run + "/trajectory.tum").size(), 30u);
+
+  const RunResult e = Run({"evaluate", "--trajectory", run + "/trajectory.tum", "--relations",
+                           walk.relations, "--json"});
+  ASSERT_TRUE(e.exited && e.exit_code == 0) << e;
+  const auto metric = nlohmann::json::parse(e.out);
+  EXPECT_EQ(metric["matched"], 29);
+  EXPECT_LT(metric["translation_m"]["mean"].get<double>(), 0.01);
+}
+
+TEST_F(CliTest, SessionRefusesAMalformedSequenceLineNamingFileAndLine) {
+  const std::string sequence = Write("bad.seq.jsonl",
+                                     "{\"scanloc_sequence\": 1}\n"
+                                     "{\"scan\": {\"angle_min_rad\": 0, \"angle_increment_rad\": "
+                                     "0.1, \"ranges\": [1, 2, \"x\"]}}\n");
+  const RunResult r = Run({"session", "--log", sequence, "--out", dir_ + "/run", "--quiet"});
+  EXPECT_TRUE(r.exited) << r;
+  EXPECT_NE(r.exit_code, 0) << r;
+  EXPECT_NE(r.err.find("bad.seq.jsonl:2:"), std::string::npos) << r;
 }
 
 }  // namespace
