@@ -24,13 +24,7 @@ CandidateEvaluationResult EvaluateCandidates(const MapView& map, const LaserScan
     tests.push_back(score.test);
     result.candidates.push_back(e);
   }
-  const CandidateRanking ranking = RankCandidates(tests, validation);
-  for (std::size_t i = 0; i < result.candidates.size(); ++i) {
-    result.candidates[i].cost = ranking.candidates[i].cost;
-    result.candidates[i].verdict = ranking.candidates[i].verdict;
-    result.candidates[i].rank = ranking.candidates[i].rank;
-  }
-  result.best = ranking.best;
+  result.best = RankInto(tests, validation, result.candidates);
   if (!candidates.empty() && result.best < 0)
     result.problems.push_back("no candidate passed the validation rules");
   return result;

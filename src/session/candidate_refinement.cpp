@@ -19,13 +19,7 @@ CandidateRefinementResult RefineCandidates(const MapView& map, const LaserScan& 
     tests.push_back(refined.refinement.test_after);
     result.candidates.push_back(refined);
   }
-  const CandidateRanking ranking = RankCandidates(tests, validation);
-  for (std::size_t i = 0; i < result.candidates.size(); ++i) {
-    result.candidates[i].cost = ranking.candidates[i].cost;
-    result.candidates[i].verdict = ranking.candidates[i].verdict;
-    result.candidates[i].rank = ranking.candidates[i].rank;
-  }
-  result.best = ranking.best;
+  result.best = RankInto(tests, validation, result.candidates);
   return result;
 }
 
