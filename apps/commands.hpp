@@ -10,5 +10,6 @@ void RegisterSimulateScanCommand(CLI::App& app);
 void RegisterRefineCommand(CLI::App& app);
 void RegisterSessionCommand(CLI::App& app);
 void RegisterEvaluateCommand(CLI::App& app);
+void RegisterSimulateCommand(CLI::App& app);
 
 }  // namespace scanloc::app

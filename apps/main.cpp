@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   scanloc::app::RegisterRefineCommand(app);
   scanloc::app::RegisterSessionCommand(app);
   scanloc::app::RegisterEvaluateCommand(app);
+  scanloc::app::RegisterSimulateCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
