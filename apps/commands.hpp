@@ -11,5 +11,6 @@ void RegisterRefineCommand(CLI::App& app);
 void RegisterSessionCommand(CLI::App& app);
 void RegisterEvaluateCommand(CLI::App& app);
 void RegisterSimulateCommand(CLI::App& app);
+void RegisterCompareCommand(CLI::App& app);
 
 }  // namespace scanloc::app

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   scanloc::app::RegisterSessionCommand(app);
   scanloc::app::RegisterEvaluateCommand(app);
   scanloc::app::RegisterSimulateCommand(app);
+  scanloc::app::RegisterCompareCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,87 @@
+// scanloc compare: one sequence with ground truth localised against the line map, against a point
+// map grown from nothing and against both, each measured against the truth.
+
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "common_options.hpp"
+#include "scanloc/io/mode_comparison.hpp"
+
+namespace scanloc::app {
+namespace {
+
+nlohmann::json ToJson(const ModeResult& r) {
+  nlohmann::json row = {{"mode", ToString(r.mode)},
+                        {"iterations", r.iterations},
+                        {"localised", r.localised},
+                        {"validated", r.validated},
+                        {"with_truth", r.with_truth},
+                        {"mean_match_pairs", r.mean_match_pairs},
+                        {"mean_valid_pairs", r.mean_valid_pairs},
+                        {"mean_match_ratio", r.mean_match_ratio},
+                        {"mean_expect_value_m", r.mean_expect_value_m},
+                        {"mean_iteration_s", r.mean_iteration_s},
+                        {"map_points", r.map_points}};
+  if (r.with_truth > 0) {
+    row["mean_translation_error_m"] = r.mean_translation_error_m;
+    row["max_translation_error_m"] = r.max_translation_error_m;
+    row["mean_rotation_error_rad"] = r.mean_rotation_error_rad;
+    row["max_rotation_error_rad"] = r.max_rotation_error_rad;
+  }
+  return row;
+}
+
+}  // namespace
+
+void RegisterCompareCommand(CLI::App& app) {
+  struct Arguments {
+    std::string sequence_path;
+    std::vector<std::string> line_map_paths;
+    std::vector<std::string> modes{"lines", "points", "both"};
+    std::size_t max_iterations = 0;
+    bool json = false;
+    ConfigArguments config;
+  };
+  auto a = std::make_shared<Arguments>();
+  CLI::App* command = app.add_subcommand(
+      "compare",
+      "localise a sequence with ground truth against the line map, a point map grown from "
+      "nothing, and both; print each mode's validation rate, error against the truth, moments "
+      "and time");
+  command->add_option("--sequence", a->sequence_path, "native sequence with truth (.seq.jsonl)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command
+      ->add_option("--line-map", a->line_map_paths,
+                   "line map; several files make one map (e.g. office.lines blinds.lines)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command
+      ->add_option("--modes", a->modes, "modes to run, in order: lines, points, both (default all)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"lines", "points", "both"}));
+  command->add_option("--max-iterations", a->max_iterations, "stop after this many (0: all)");
+  command->add_flag("--json", a->json, "print one JSON object per mode instead of the table");
+  a->config.Register(*command);
+  command->final_callback([a] {
+    const Config config = a->config.Build();
+    LineMap line_map;
+    for (const auto& path : a->line_map_paths) {
+      const LineMap part = ReadLineMap(path);
+      line_map.segments.insert(line_map.segments.end(), part.segments.begin(), part.segments.end());
+    }
+    std::vector<ModeResult> results;
+    for (const auto& mode : a->modes) {
+      results.push_back(
+          RunMode(ParseMapMode(mode), a->sequence_path, line_map, config, a->max_iterations));
+      if (a->json) std::cout << ToJson(results.back()).dump() << '\n';
+    }
+    if (a->json) return;
+    std::cout << "compare: " << a->sequence_path << ", line map of " << line_map.segments.size()
+              << " segments; errors against the truth, moments of the refined posture\n";
+    PrintComparison(std::cout, results);
+  });
+}
+
+}  // namespace scanloc::app
