@@ -119,6 +119,90 @@ TEST(Session, AllInvalidScanIsFlaggedAndDoesNotExtendTheMap) {
   EXPECT_FALSE(r.candidates.problems.empty());
 }
 
+TEST(Session, APersonWalkingAheadLeavesNoTraceInTheMap) {
+  // For the first 40 steps someone walks 1 m ahead of the robot (a 0.4 m wide body, in no map);
+  // then they step out of the way. Scans that later see through where they were carve them out.
+  const LineMap room = Classroom();
+  std::mt19937 rng(11);
+  LaserSimulatorOptions laser;
+  laser.beam_count = 720;
+  laser.range_noise_m = 0.005;
+  SessionOptions options;
+  Pose2D truth{1.2, 3.5, 0.0};
+  options.initial_pose = truth;
+  Session session(options, {}, {}, {}, {}, {}, PointMap{});
+  Pose2D odometry;
+  std::vector<Eigen::Vector2d> person_positions;
+  for (int i = 0; i < 70; ++i) {
+    const Pose2D step = i == 0 ? Pose2D{} : (i < 40 ? Pose2D{0.05, 0.0, 0.0} : Pose2D{});
+    truth = truth * step;
+    odometry = odometry * step;
+    if (i >= 40 && i < 70) {  // standing still, turning to and fro to see the room again
+      truth.yaw_rad = 0.3 * std::sin(0.5 * (i - 40));
+      odometry.yaw_rad = truth.yaw_rad;
+    }
+    LineMap world = room;
+    if (i < 40) {
+      const Eigen::Vector2d person = truth.Translation() + Eigen::Vector2d(1.0, 0.0);
+      person_positions.push_back(person);
+      world.segments.push_back(
+          {person + Eigen::Vector2d(0.0, -0.2), person + Eigen::Vector2d(0.0, 0.2)});
+    }
+    Iteration it;
+    it.timestamp_s = 0.1 * i;
+    it.scan = SimulateLaser(world, truth, laser, rng);
+    it.odometry = odometry;
+    session.Process(it);
+  }
+  // The person's last places, in front of the robot's final position, are empty again.
+  std::size_t left = 0;
+  for (std::size_t i = 30; i < person_positions.size(); ++i)
+    left += session.point_map().RadiusSearch(person_positions[i], 0.15).size();
+  EXPECT_EQ(left, 0u);
+  // The walls are all still there: the room's east wall at x = 6.3 in front of the robot.
+  EXPECT_FALSE(session.point_map().RadiusSearch({6.3, 3.5}, 0.1).empty());
+}
+
+TEST(Session, AnUnvalidatedPostureIsTheRefinedBestGuessAndDoesNotExtendTheMap) {
+  const Sequence sequence = LoopAroundTheRoom(6);
+  SessionOptions options;
+  options.initial_pose = sequence.truth.front();
+  options.max_expect_value_m = 1e-4;  // rule 2 can never pass
+  Session session(options, {}, {}, {}, {}, {}, PointMap{});
+  session.Process(sequence.iterations[0]);
+  const std::size_t points = session.point_map().live_size();
+  for (std::size_t i = 1; i < 10; ++i) {
+    const IterationRecord r = session.Process(sequence.iterations[i]);
+    if (r.skipped) continue;
+    EXPECT_FALSE(r.validated);
+    EXPECT_EQ(r.verdict, Verdict::kHighExpectValue);
+    EXPECT_FALSE(r.inserted);
+    ASSERT_TRUE(r.refinement.has_value());
+    const Pose2D refined = r.refinement->T_world_laser;
+    EXPECT_DOUBLE_EQ(r.T_world_robot.x_m, refined.x_m);  // mounting is the identity here
+    EXPECT_DOUBLE_EQ(r.T_world_robot.yaw_rad, refined.yaw_rad);
+    const Pose2D error = Between(sequence.truth[i], r.T_world_robot);
+    EXPECT_LT(std::hypot(error.x_m, error.y_m), 0.02);
+  }
+  EXPECT_EQ(session.point_map().live_size(), points);
+}
+
+TEST(Session, EveryRefinedCandidateIsRecordedAndTheKeptOneIsAmongThem) {
+  const Sequence sequence = LoopAroundTheRoom(7);
+  SessionOptions options;
+  options.initial_pose = sequence.truth.front();
+  Session session(options, {}, {}, {}, {}, {}, PointMap{});
+  for (std::size_t i = 0; i < 12; ++i) {
+    const IterationRecord r = session.Process(sequence.iterations[i]);
+    if (r.skipped || r.first) continue;
+    ASSERT_FALSE(r.refined.empty());
+    EXPECT_LE(r.refined.size(), static_cast<std::size_t>(options.max_refined_candidates));
+    bool kept = false;
+    for (const auto& refined : r.refined) kept |= refined.candidate == r.chosen;
+    EXPECT_TRUE(kept);
+  }
+}
+
 TEST(SessionOptions, AbsurdValuesAreRefused) {
   SessionOptions options;
   options.heading_step_rad = 0.0;

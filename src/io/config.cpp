@@ -155,12 +155,15 @@ void ApplyJson(const json& root, Config& c) {
   auto session = top.Child("session");
   session.Field("heading_spread_rad", c.session.heading_spread_rad)
       .Field("heading_step_rad", c.session.heading_step_rad)
+      .Field("max_refined_candidates", c.session.max_refined_candidates)
+      .Field("max_expect_value_m", c.session.max_expect_value_m)
       .Field("heading_candidates_min_turn_rad", c.session.heading_candidates_min_turn_rad)
       .Field("localise_translation_m", c.session.localise_translation_m)
       .Field("localise_rotation_rad", c.session.localise_rotation_rad)
       .Field("insert_translation_m", c.session.insert_translation_m)
       .Field("insert_rotation_rad", c.session.insert_rotation_rad)
       .Field("insert_unvalidated", c.session.insert_unvalidated)
+      .Field("free_space_margin_m", c.session.free_space_margin_m)
       .Field("initial_pose", initial)
       .RefuseUnknown();
   if (initial.size() != 3)
@@ -235,12 +238,15 @@ json ToJson(const Config& c) {
       {"session",
        {{"heading_spread_rad", c.session.heading_spread_rad},
         {"heading_step_rad", c.session.heading_step_rad},
+        {"max_refined_candidates", c.session.max_refined_candidates},
+        {"max_expect_value_m", c.session.max_expect_value_m},
         {"heading_candidates_min_turn_rad", c.session.heading_candidates_min_turn_rad},
         {"localise_translation_m", c.session.localise_translation_m},
         {"localise_rotation_rad", c.session.localise_rotation_rad},
         {"insert_translation_m", c.session.insert_translation_m},
         {"insert_rotation_rad", c.session.insert_rotation_rad},
         {"insert_unvalidated", c.session.insert_unvalidated},
+        {"free_space_margin_m", c.session.free_space_margin_m},
         {"initial_pose",
          {c.session.initial_pose.x_m, c.session.initial_pose.y_m,
           c.session.initial_pose.yaw_rad}}}},

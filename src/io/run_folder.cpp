@@ -21,6 +21,7 @@ nlohmann::json ToJson(const IterationRecord& r) {
                         {"validated", r.validated},
                         {"reason", ToString(r.verdict)},
                         {"inserted", r.inserted},
+                        {"carved", r.carved},
                         {"map_points", r.map_points},
                         {"timings_ms",
                          {{"evaluate", 1e3 * r.evaluate_s},
@@ -36,6 +37,18 @@ nlohmann::json ToJson(const IterationRecord& r) {
   }
   if (r.refinement) {
     out["refinement"] = ToJson(*r.refinement);
+    nlohmann::json refined = nlohmann::json::array();
+    for (const auto& candidate : r.refined)
+      refined.push_back(
+          {{"candidate", r.candidates.candidates[candidate.candidate].candidate.label},
+           {"T_world_laser", ToJson(candidate.refinement.T_world_laser)},
+           {"cost", candidate.cost},
+           {"rank", candidate.rank},
+           {"valid", candidate.verdict == Verdict::kValid},
+           {"reason", ToString(candidate.verdict)},
+           {"expect_value_m", candidate.refinement.test_after.expect_value_m},
+           {"match_ratio", candidate.refinement.test_after.MatchRatio()}});
+    out["refined_candidates"] = refined;
     const Pose2D correction = Between(r.prediction, r.T_world_robot);
     out["correction_from_prediction_mm_mm_mrad"] = {1e3 * correction.x_m, 1e3 * correction.y_m,
                                                     1e3 * correction.yaw_rad};

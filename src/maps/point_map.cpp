@@ -54,6 +54,9 @@ struct PointMap::Storage {
   std::vector<double> spacings;
   std::vector<Eigen::Vector2f> normals;  // float: normals need no more, and maps can be large
   std::vector<std::uint16_t> samples;    // samples merged into each point (capped)
+  std::vector<std::uint16_t> misses;     // scans that saw through the point (carving)
+  std::vector<std::uint8_t> alive;       // 0 once carving removed the point
+  std::size_t removed = 0;
   std::unordered_map<std::int64_t, std::uint32_t> occupied_cells;
   CloudAdaptor adaptor{&indexed};
   KdTree tree{2, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16)};
@@ -72,6 +75,12 @@ PointMap& PointMap::operator=(PointMap&&) noexcept = default;
 
 std::size_t PointMap::size() const {
   return storage_->points.size();
+}
+std::size_t PointMap::live_size() const {
+  return storage_->points.size() - storage_->removed;
+}
+bool PointMap::alive(std::size_t i) const {
+  return storage_->alive[i] != 0;
 }
 const Eigen::Vector2d& PointMap::point(std::size_t i) const {
   return storage_->points[i];
@@ -161,6 +170,8 @@ std::size_t PointMap::Add(const std::vector<Eigen::Vector2d>& points_world,
     s.spacings.push_back(spacing);
     s.normals.push_back(normal);
     s.samples.push_back(1);
+    s.misses.push_back(0);
+    s.alive.push_back(1);
   }
   if (s.points.size() > first_new)
     s.tree.addPoints(static_cast<std::uint32_t>(first_new),
@@ -202,6 +213,51 @@ std::size_t PointMap::InsertScan(const LaserScan& scan, const Pose2D& T_world_la
     normals.push_back(normal);
   }
   return Insert(points, spacings, normals);
+}
+
+std::size_t PointMap::CarveFreeSpace(const LaserScan& scan, const Pose2D& T_world_laser,
+                                     double margin_m) {
+  scan.CheckConsistent();
+  if (!(margin_m >= 0.0)) throw std::invalid_argument("CarveFreeSpace: margin_m must be >= 0");
+  const std::size_t n = scan.size();
+  double reach_m = 0.0;
+  for (std::size_t k = 0; k < n; ++k)
+    if (scan.IsValid(k)) reach_m = std::max(reach_m, scan.ranges_m[k]);
+  if (reach_m <= margin_m || empty()) return 0;
+  // The nearest return among a beam and its two neighbours: a point is only seen through when
+  // all three passed it, so that points beside a depth jump are not carved by discretisation.
+  std::vector<double> nearest(n, -1.0);
+  for (std::size_t k = 1; k + 1 < n; ++k)
+    if (scan.IsValid(k - 1) && scan.IsValid(k) && scan.IsValid(k + 1))
+      nearest[k] = std::min({scan.ranges_m[k - 1], scan.ranges_m[k], scan.ranges_m[k + 1]});
+  const Pose2D T_laser_world = T_world_laser.Inverse();
+  const double angle_min = scan.layout.angle_min_rad;
+  const double increment = scan.layout.angle_increment_rad;
+  Storage& s = *storage_;
+  std::size_t removed = 0;
+  for (const auto& [index, unused] : RadiusSearch(T_world_laser.Translation(), reach_m)) {
+    const Eigen::Vector2d q = T_laser_world.Transform(s.points[index]);
+    const double range = q.norm();
+    if (range <= scan.layout.range_min_m) continue;
+    const double beam = std::round(
+        NormalizeAngle(std::atan2(q.y(), q.x()) - angle_min - 0.5 * (n - 1) * increment) /
+            increment +
+        0.5 * (n - 1));
+    if (!(beam >= 0.0) || beam > static_cast<double>(n - 1)) continue;
+    const double hit = nearest[static_cast<std::size_t>(beam)];
+    if (hit < 0.0 || range >= hit - margin_m) continue;
+    if (s.misses[index] < std::numeric_limits<std::uint16_t>::max()) ++s.misses[index];
+    if (s.misses[index] <= s.samples[index]) continue;
+    s.alive[index] = 0;
+    s.tree.removePoint(index);
+    if (options_.cell_size_m > 0.0) {
+      const auto cell = s.occupied_cells.find(CellKey(s.indexed[index], options_.cell_size_m));
+      if (cell != s.occupied_cells.end() && cell->second == index) s.occupied_cells.erase(cell);
+    }
+    ++removed;
+  }
+  s.removed += removed;
+  return removed;
 }
 
 double PointMap::MaxIndexDisplacement() const {

@@ -147,7 +147,7 @@ void SavePointMapPcd(const PointMap& map, const std::string& path) {
   cloud.fields = {FloatField("x", 0),         FloatField("y", 4),
                   FloatField("z", 8),         FloatField("spacing", 12),
                   FloatField("normal_x", 16), FloatField("normal_y", 20)};
-  cloud.width = static_cast<std::uint32_t>(map.size());
+  cloud.width = static_cast<std::uint32_t>(map.live_size());  // carved points are not saved
   cloud.height = 1;
   cloud.point_step = kPointStep;
   cloud.row_step = kPointStep * cloud.width;
@@ -155,7 +155,9 @@ void SavePointMapPcd(const PointMap& map, const std::string& path) {
   cloud.is_dense = true;
   cloud.data.resize(static_cast<std::size_t>(cloud.row_step));
   const double cell_size_m = map.options().cell_size_m;
+  std::size_t row = 0;
   for (std::size_t i = 0; i < map.size(); ++i) {
+    if (!map.alive(i)) continue;
     const Eigen::Vector2d normal = map.normal(i);
     const float values[6] = {FloatInSameCell(map.point(i).x(), cell_size_m),
                              FloatInSameCell(map.point(i).y(), cell_size_m),
@@ -163,7 +165,7 @@ void SavePointMapPcd(const PointMap& map, const std::string& path) {
                              static_cast<float>(map.spacing(i)),
                              static_cast<float>(normal.x()),
                              static_cast<float>(normal.y())};
-    std::memcpy(cloud.data.data() + i * kPointStep, values, sizeof values);
+    std::memcpy(cloud.data.data() + row++ * kPointStep, values, sizeof values);
   }
 
   if (map.empty()) {

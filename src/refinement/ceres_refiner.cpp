@@ -28,28 +28,42 @@ struct SurfaceLine {
 //   kNone/kGate:  residual = r − t
 //   kCosine:      residual = (r − t)·(n·u) = n·(p + r·u) − offset, the measured point's signed
 //                 distance to the line, which stays finite at grazing incidence.
-class BeamResidual {
+//   Jacobians (u' = (−sin φ, cos φ)):
+//     cosine: ∂/∂(x, y) = n, ∂/∂θ = r·(n·u')
+//     plain:  ∂/∂(x, y) = n / (n·u), ∂/∂θ = (offset − n·p)·(n·u') / (n·u)²
+// Analytic: one beam's residual is evaluated thousands of times per second in a session.
+class BeamResidual : public ceres::SizedCostFunction<1, 3> {
  public:
   BeamResidual(double bearing_rad, double range_m, const SurfaceLine& line, bool cosine)
       : bearing_rad_(bearing_rad), range_m_(range_m), line_(line), cosine_(cosine) {}
 
-  template <typename T>
-  bool operator()(const T* const pose, T* residual) const {
-    const T phi = pose[2] + T(bearing_rad_);
-    const T nu = T(line_.normal.x()) * cos(phi) + T(line_.normal.y()) * sin(phi);
-    const T np = T(line_.normal.x()) * pose[0] + T(line_.normal.y()) * pose[1];
+  bool Evaluate(double const* const* parameters, double* residual,
+                double** jacobians) const override {
+    const double* pose = parameters[0];
+    const double phi = pose[2] + bearing_rad_;
+    const double c = std::cos(phi), s = std::sin(phi);
+    const Eigen::Vector2d& n = line_.normal;
+    const double nu = n.x() * c + n.y() * s;
+    const double nu_dot = -n.x() * s + n.y() * c;
+    const double np = n.x() * pose[0] + n.y() * pose[1];
     if (cosine_) {
-      residual[0] = np + T(range_m_) * nu - T(line_.offset);
-    } else {
-      residual[0] = T(range_m_) - (T(line_.offset) - np) / nu;
+      residual[0] = np + range_m_ * nu - line_.offset;
+      if (jacobians != nullptr && jacobians[0] != nullptr) {
+        jacobians[0][0] = n.x();
+        jacobians[0][1] = n.y();
+        jacobians[0][2] = range_m_ * nu_dot;
+      }
+      return true;
+    }
+    if (std::abs(nu) < 1e-12) return false;  // the beam runs along the line
+    const double along = line_.offset - np;
+    residual[0] = range_m_ - along / nu;
+    if (jacobians != nullptr && jacobians[0] != nullptr) {
+      jacobians[0][0] = n.x() / nu;
+      jacobians[0][1] = n.y() / nu;
+      jacobians[0][2] = along * nu_dot / (nu * nu);
     }
     return true;
-  }
-
-  static ceres::CostFunction* Create(double bearing_rad, double range_m, const SurfaceLine& line,
-                                     bool cosine) {
-    return new ceres::AutoDiffCostFunction<BeamResidual, 1, 3>(
-        new BeamResidual(bearing_rad, range_m, line, cosine));
   }
 
  private:
@@ -77,25 +91,22 @@ ceres::LossFunction* MakeLoss(const LikelihoodDistanceOptions& distance) {
 // A line through the k nearest map points of the hit, if they are close and collinear enough.
 bool FitPointLine(const PointMap& points, const Eigen::Vector2d& hit,
                   const CeresRefinerOptions& options, SurfaceLine& line) {
-  const auto neighbours =
-      points.KNearest(hit, static_cast<std::size_t>(options.line_fit_neighbours));
-  if (neighbours.size() < 2) return false;
+  // The k nearest within the radius: one radius search, then the k nearest of what it found (the
+  // same set as the k nearest filtered by the radius, at the cost of one search instead of two).
+  auto neighbours = points.RadiusSearch(hit, options.line_fit_radius_m);
+  const auto k = std::min(neighbours.size(), static_cast<std::size_t>(options.line_fit_neighbours));
+  if (k < 2) return false;
+  std::nth_element(neighbours.begin(), neighbours.begin() + (k - 1), neighbours.end(),
+                   [](const auto& a, const auto& b) { return a.second < b.second; });
+  neighbours.resize(k);
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-  std::size_t used = 0;
-  const double radius2 = options.line_fit_radius_m * options.line_fit_radius_m;
-  for (const auto& [index, squared_distance] : neighbours)
-    if (squared_distance <= radius2) {
-      centroid += points.point(index);
-      ++used;
-    }
-  if (used < 2) return false;
-  centroid /= static_cast<double>(used);
+  for (const auto& [index, squared_distance] : neighbours) centroid += points.point(index);
+  centroid /= static_cast<double>(k);
   Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
-  for (const auto& [index, squared_distance] : neighbours)
-    if (squared_distance <= radius2) {
-      const Eigen::Vector2d d = points.point(index) - centroid;
-      spread += d * d.transpose();
-    }
+  for (const auto& [index, squared_distance] : neighbours) {
+    const Eigen::Vector2d d = points.point(index) - centroid;
+    spread += d * d.transpose();
+  }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(spread);
   const double largest = eigen.eigenvalues()(1);
   if (!(largest > 0.0)) return false;
@@ -145,6 +156,7 @@ BuiltProblem BuildProblem(const MapView& map, const LaserScan& scan, const Pose2
                        map.points != nullptr && !map.points->empty();
   // Without a simulated scan (nearest pairing on a point map needs none) no beam has a hit.
   const bool have_sim = sim.size() == scan.size();
+  ceres::LossFunction* loss = MakeLoss(scoring.distance);  // shared by every residual
   for (std::size_t k = 0; k < scan.size(); ++k) {
     if (!scan.IsValid(k)) continue;
     const bool sim_valid = have_sim && sim.IsValid(k);
@@ -165,11 +177,11 @@ BuiltProblem BuildProblem(const MapView& map, const LaserScan& scan, const Pose2
     if (cos_incidence < 1e-3) continue;
     if (options.incidence == IncidenceWeighting::kGate && cos_incidence < min_cos) continue;
     built.problem->AddResidualBlock(
-        BeamResidual::Create(scan.layout.Bearing(k), scan.ranges_m[k], line, cosine),
-        MakeLoss(scoring.distance), parameters);
+        new BeamResidual(scan.layout.Bearing(k), scan.ranges_m[k], line, cosine), loss, parameters);
     built.ranges_used_m.push_back(scan.ranges_m[k]);
     ++built.residual_count;
   }
+  if (built.residual_count == 0) delete loss;  // the problem owns it only once it is used
   return built;
 }
 

@@ -13,15 +13,18 @@ CandidateEvaluationResult EvaluateCandidates(const MapView& map, const LaserScan
   if (scan.CountValid() == 0) result.problems.push_back("the scan has no valid range");
   if (candidates.empty()) result.problems.push_back("no candidate posture was given");
 
+  std::vector<Pose2D> postures;
+  for (const auto& candidate : candidates)
+    postures.push_back(mounting.LaserPose(candidate.T_world_robot));
+  const std::vector<PostureScore> scores = ScorePostures(map, scan, postures, scoring);
   std::vector<LikelihoodTestResult> tests;
-  for (const auto& candidate : candidates) {
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
     CandidateEvaluation e;
-    e.candidate = candidate;
-    e.T_world_laser = mounting.LaserPose(candidate.T_world_robot);
-    const PostureScore score = ScorePosture(map, scan, e.T_world_laser, scoring);
-    e.test = score.test;
-    e.distance = score.distance;
-    tests.push_back(score.test);
+    e.candidate = candidates[i];
+    e.T_world_laser = postures[i];
+    e.test = scores[i].test;
+    e.distance = scores[i].distance;
+    tests.push_back(scores[i].test);
     result.candidates.push_back(e);
   }
   result.best = RankInto(tests, validation, result.candidates);

@@ -1,5 +1,6 @@
 #include "scanloc/session/session.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -20,11 +21,14 @@ void SessionOptions::Validate() const {
     if (!ok) throw std::invalid_argument(std::string("SessionOptions: ") + what);
   };
   require(heading_spread_rad >= 0.0 && heading_spread_rad < M_PI, "heading_spread_rad in [0, π)");
+  require(max_expect_value_m > 0.0, "max_expect_value_m must be > 0");
+  require(max_refined_candidates >= 1, "max_refined_candidates must be >= 1");
   require(heading_step_rad > 0.0, "heading_step_rad must be positive");
   require(heading_candidates_min_turn_rad >= 0.0, "heading_candidates_min_turn_rad must be >= 0");
   require(heading_spread_rad / heading_step_rad <= 100.0, "at most 100 heading steps per side");
   require(localise_translation_m >= 0.0 && localise_rotation_rad >= 0.0,
           "localise thresholds must be >= 0");
+  require(free_space_margin_m >= 0.0, "free_space_margin_m must be >= 0");
   require(insert_translation_m >= 0.0 && insert_rotation_rad >= 0.0,
           "insert thresholds must be >= 0");
   require(std::isfinite(initial_pose.x_m) && std::isfinite(initial_pose.y_m) &&
@@ -43,6 +47,7 @@ Session::Session(SessionOptions options, ScoringOptions scoring, ValidationOptio
       line_map_(std::move(line_map)),
       point_map_(std::move(point_map)) {
   options_.Validate();
+  validation_.max_expect_value_m = options_.max_expect_value_m;
   validation_.Validate();
   scoring_.test.Validate();
   scoring_.distance.Validate();
@@ -63,15 +68,35 @@ std::vector<Candidate> Session::MakeCandidates(const Pose2D& prediction, const I
   for (int s = 1; s <= steps; ++s)
     for (const int sign : {-1, 1}) {
       const double offset = sign * s * options_.heading_step_rad;
-      Pose2D turned = prediction;
+      // Turned about the laser, so that all share its position (and one simulated sweep).
+      Pose2D turned = mounting_.LaserPose(prediction);
       turned.yaw_rad = NormalizeAngle(turned.yaw_rad + offset);
       char label[32];
       std::snprintf(label, sizeof label, "odometry%+.0fdeg", offset * 180.0 / M_PI);
-      candidates.push_back({turned, label});
+      candidates.push_back({mounting_.RobotPose(turned), label});
     }
   for (std::size_t i = 0; i < iteration.external_candidates.size(); ++i)
     candidates.push_back({iteration.external_candidates[i], "external" + std::to_string(i)});
   return candidates;
+}
+
+std::vector<int> Session::CandidatesToRefine(const CandidateEvaluationResult& evaluated) const {
+  // The valid candidates by rank; when none is valid, the cheapest by (3.11) alone.
+  std::vector<int> order;
+  const auto& candidates = evaluated.candidates;
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    if (candidates[i].rank >= 0) order.push_back(static_cast<int>(i));
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return candidates[a].rank < candidates[b].rank; });
+  if (static_cast<int>(order.size()) > options_.max_refined_candidates)
+    order.resize(options_.max_refined_candidates);
+  if (order.empty() && !candidates.empty()) {
+    int cheapest = 0;
+    for (std::size_t i = 1; i < candidates.size(); ++i)
+      if (candidates[i].cost < candidates[cheapest].cost) cheapest = static_cast<int>(i);
+    order.push_back(cheapest);
+  }
+  return order;
 }
 
 IterationRecord Session::Process(const Iteration& iteration) {
@@ -112,33 +137,44 @@ IterationRecord Session::Process(const Iteration& iteration) {
         EvaluateCandidates(map, iteration.scan, MakeCandidates(prediction, iteration, turning),
                            mounting_, scoring_, validation_);
     record.evaluate_s = SecondsSince(evaluate_start);
-    // The best valid candidate; when none is valid, the cheapest by (3.11), flagged below.
-    record.chosen = record.candidates.best;
-    if (record.chosen < 0) {
-      double best_cost = std::numeric_limits<double>::infinity();
-      for (std::size_t i = 0; i < record.candidates.candidates.size(); ++i)
-        if (record.candidates.candidates[i].cost < best_cost) {
-          best_cost = record.candidates.candidates[i].cost;
-          record.chosen = static_cast<int>(i);
-        }
-    }
-    if (record.chosen < 0) record.chosen = 0;  // no valid pair anywhere: keep the prediction
+    record.refine_s = 0.0;
     const auto refine_start = std::chrono::steady_clock::now();
-    const CandidateEvaluation& chosen = record.candidates.candidates[record.chosen];
     RefinerOptions refiner = refiner_;
-    refiner.ceres.score_initial = false;  // the candidate evaluation scored it already
-    record.refinement = Refine(map, iteration.scan, chosen.T_world_laser, scoring_, refiner);
-    record.refinement->test_before = chosen.test;
-    record.refinement->distance_before = chosen.distance;
+    refiner.ceres.score_initial = false;  // the candidate evaluation scored them already
+    std::vector<LikelihoodTestResult> tests;
+    for (const int i : CandidatesToRefine(record.candidates)) {
+      const CandidateEvaluation& candidate = record.candidates.candidates[i];
+      IterationRecord::Refined refined;
+      refined.candidate = i;
+      refined.refinement = Refine(map, iteration.scan, candidate.T_world_laser, scoring_, refiner);
+      refined.refinement.test_before = candidate.test;
+      refined.refinement.distance_before = candidate.distance;
+      tests.push_back(refined.refinement.test_after);
+      record.refined.push_back(std::move(refined));
+    }
     record.refine_s = SecondsSince(refine_start);
-    // The refined posture must pass rules 1 and 2 on its own.
-    const CandidateRanking ranking = RankCandidates({record.refinement->test_after}, validation_);
-    record.verdict = ranking.candidates[0].verdict;
-    record.validated = record.verdict == Verdict::kValid;
-    // A posture the rules do not validate is not trusted over the odometry: the prediction is
-    // kept (flagged), so that one bad fit cannot throw the session off.
-    record.T_world_robot =
-        record.validated ? mounting_.RobotPose(record.refinement->T_world_laser) : prediction;
+    // The refined postures are ranked by the rules; the best valid one is kept. When none is
+    // valid, the one with the lowest cost (3.11) is the best guess, flagged.
+    const int best = RankInto(tests, validation_, record.refined);
+    int kept = best;
+    if (kept < 0) {
+      double best_cost = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < record.refined.size(); ++i) {
+        if (record.refined[i].cost < best_cost) {
+          best_cost = record.refined[i].cost;
+          kept = static_cast<int>(i);
+        }
+      }
+    }
+    if (kept < 0) kept = 0;
+    const IterationRecord::Refined& chosen = record.refined[kept];
+    record.chosen = chosen.candidate;
+    record.refinement = chosen.refinement;
+    record.verdict = chosen.verdict;
+    record.validated = best >= 0;
+    // A posture the rules do not validate is still the best guess (flagged): keeping the
+    // odometry instead would carry its heading error in fast turns into every later scan.
+    record.T_world_robot = mounting_.RobotPose(record.refinement->T_world_laser);
     if (iteration.odometry) last_localised_odometry_ = *iteration.odometry;
   }
 
@@ -147,7 +183,11 @@ IterationRecord Session::Process(const Iteration& iteration) {
                      MovedMoreThan(*last_inserted_pose_, record.T_world_robot,
                                    options_.insert_translation_m, options_.insert_rotation_rad))) {
     const auto insert_start = std::chrono::steady_clock::now();
-    point_map_.InsertScan(iteration.scan, mounting_.LaserPose(record.T_world_robot));  // (3.6)
+    const Pose2D T_world_laser = mounting_.LaserPose(record.T_world_robot);
+    if (options_.free_space_margin_m > 0.0)
+      record.carved =
+          point_map_.CarveFreeSpace(iteration.scan, T_world_laser, options_.free_space_margin_m);
+    point_map_.InsertScan(iteration.scan, T_world_laser);  // (3.6)
     last_inserted_pose_ = record.T_world_robot;
     record.inserted = true;
     record.insert_s = SecondsSince(insert_start);
@@ -156,7 +196,7 @@ IterationRecord Session::Process(const Iteration& iteration) {
   last_pose_ = record.T_world_robot;
   if (iteration.odometry) last_odometry_ = iteration.odometry;
   ++count_;
-  record.map_points = point_map_.size();
+  record.map_points = point_map_.live_size();
   record.total_s = SecondsSince(start);
   return record;
 }

@@ -170,7 +170,7 @@ SimulatedScan SimulateFromPointsBruteForce(const PointMap& map, const ScanLayout
                                            const PointSimulationOptions& options) {
   SimulatedScan sim = EmptySimulation(layout);
   for (std::size_t i = 0; i < map.size(); ++i)
-    OfferPoint(sim, map, T_world_laser, options, static_cast<std::uint32_t>(i));
+    if (map.alive(i)) OfferPoint(sim, map, T_world_laser, options, static_cast<std::uint32_t>(i));
   return sim;
 }
 

@@ -53,9 +53,20 @@ class PointMap {
   // perpendicular to the line through its neighbouring beams' points (unknown at depth jumps).
   // Returns points added.
   std::size_t InsertScan(const LaserScan& scan, const Pose2D& T_world_laser);
+  // Free-space carving: every point that the beams of this scan (taken from T_world_laser) saw
+  // through, lying more than margin_m in front of the return of its beam and of both neighbouring
+  // beams, gets a miss; a point seen through more often than it was seen (misses > samples) is
+  // removed: people, doors and other things that moved do not stay in the map to occlude it.
+  // Beams without an echo carve nothing (glass, black surfaces). Returns the points removed.
+  std::size_t CarveFreeSpace(const LaserScan& scan, const Pose2D& T_world_laser,
+                             double margin_m = 0.2);
 
+  // Slots: indices 0 … size()−1 address points, some of which may have been removed by carving
+  // (alive(i) false): they are in no search result and no saved map.
   std::size_t size() const;
-  bool empty() const { return size() == 0; }
+  std::size_t live_size() const;
+  bool alive(std::size_t i) const;
+  bool empty() const { return live_size() == 0; }
   const Eigen::Vector2d& point(std::size_t i) const;
   double spacing(std::size_t i) const;
   // The unit normal of the surface point i samples, or zero when unknown.

@@ -1,0 +1,99 @@
+// Free-space carving of the point map: what a scan saw through leaves the map, what it saw stays.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "scanloc/maps/line_map.hpp"
+#include "scanloc/maps/point_map.hpp"
+#include "scanloc/maps/point_map_io.hpp"
+#include "test_support.hpp"
+
+namespace scanloc {
+namespace {
+
+// A 10 m × 8 m room seen from its centre with 720 beams over 360°, no noise.
+class CarvingTest : public ::testing::Test {
+ protected:
+  LineMap room_ = testing::RectangleRoom(10.0, 8.0);
+  Pose2D centre_{5.0, 4.0, 0.0};
+  LaserScan scan_ = testing::NoisyScan(room_, centre_, 720, 0.0, 1);
+  PointMap map_;
+};
+
+TEST_F(CarvingTest, APointSeenThroughTwiceMoreThanSeenIsRemoved) {
+  map_.InsertScan(scan_, centre_);
+  const std::size_t walls = map_.live_size();
+  // A person who stood 2 m east of the robot once: one sample.
+  ASSERT_TRUE(map_.Insert(Eigen::Vector2d(7.0, 4.0), 0.05));
+  EXPECT_EQ(map_.CarveFreeSpace(scan_, centre_), 0u);  // one miss, one sample: kept
+  EXPECT_EQ(map_.live_size(), walls + 1);
+  EXPECT_EQ(map_.CarveFreeSpace(scan_, centre_), 1u);  // two misses: removed
+  EXPECT_EQ(map_.live_size(), walls);
+  EXPECT_EQ(map_.size(), walls + 1);  // its slot stays, dead
+  EXPECT_FALSE(map_.alive(walls));
+  // Searches no longer see it, the walls are all there.
+  EXPECT_TRUE(map_.RadiusSearch({7.0, 4.0}, 0.5).empty());
+  const auto nearest = map_.KNearest({7.0, 4.0}, 1);
+  ASSERT_EQ(nearest.size(), 1u);
+  EXPECT_NEAR(std::sqrt(nearest[0].second), 3.0, 0.05);  // the east wall at x = 10
+}
+
+TEST_F(CarvingTest, WallsAndPointsNearTheReturnAreNeverCarved) {
+  map_.InsertScan(scan_, centre_);
+  map_.Insert(Eigen::Vector2d(9.9, 4.0), 0.05);  // 0.1 m in front of the east wall: within margin
+  const std::size_t before = map_.live_size();
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(map_.CarveFreeSpace(scan_, centre_, 0.2), 0u);
+  EXPECT_EQ(map_.live_size(), before);
+}
+
+TEST_F(CarvingTest, ACarvedCellTakesNewSamplesAsANewPoint) {
+  map_.InsertScan(scan_, centre_);
+  map_.Insert(Eigen::Vector2d(7.0, 4.0), 0.05);
+  map_.CarveFreeSpace(scan_, centre_);
+  map_.CarveFreeSpace(scan_, centre_);
+  const std::size_t live = map_.live_size();
+  // Something is there again: it must come back rather than merge into the dead point.
+  EXPECT_TRUE(map_.Insert(Eigen::Vector2d(7.01, 4.0), 0.05));
+  EXPECT_EQ(map_.live_size(), live + 1);
+  EXPECT_EQ(map_.RadiusSearch({7.0, 4.0}, 0.1).size(), 1u);
+}
+
+TEST_F(CarvingTest, BeamsWithoutEchoCarveNothing) {
+  map_.Insert(Eigen::Vector2d(7.0, 4.0), 0.05);
+  LaserScan blind = scan_;
+  for (double& r : blind.ranges_m) r = -1.0;
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(map_.CarveFreeSpace(blind, centre_), 0u);
+  EXPECT_EQ(map_.live_size(), 1u);
+}
+
+TEST_F(CarvingTest, PointsBesideADepthJumpAreKept) {
+  // A pillar 2 m east hides part of the east wall; wall points just beside the shadow's edge lie
+  // behind the pillar's neighbouring beam and must not be carved by the beam next to it.
+  LineMap world = room_;
+  world.segments.push_back({{6.9, 3.9}, {6.9, 4.1}});
+  const LaserScan with_pillar = testing::NoisyScan(world, centre_, 720, 0.0, 1);
+  map_.InsertScan(scan_, centre_);  // the wall seen before the pillar was there
+  const std::size_t before = map_.live_size();
+  for (int i = 0; i < 3; ++i) map_.CarveFreeSpace(with_pillar, centre_);
+  EXPECT_EQ(map_.live_size(), before);  // the pillar is in front of them, nothing seen through
+}
+
+TEST_F(CarvingTest, SavedMapsHoldOnlyLivePoints) {
+  map_.InsertScan(scan_, centre_);
+  map_.Insert(Eigen::Vector2d(7.0, 4.0), 0.05);
+  map_.CarveFreeSpace(scan_, centre_);
+  map_.CarveFreeSpace(scan_, centre_);
+  const std::string path = testing::TemporaryDir() + "/carved.pcd";
+  SavePointMapPcd(map_, path);
+  const PointMap loaded = LoadPointMapPcd(path);
+  EXPECT_EQ(loaded.live_size(), map_.live_size());
+  EXPECT_TRUE(loaded.RadiusSearch({7.0, 4.0}, 0.5).empty());
+}
+
+TEST_F(CarvingTest, NegativeMarginIsRefused) {
+  EXPECT_THROW(map_.CarveFreeSpace(scan_, centre_, -0.1), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace scanloc
