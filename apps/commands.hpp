@@ -10,6 +10,7 @@ void RegisterSimulateScanCommand(CLI::App& app);
 void RegisterRefineCommand(CLI::App& app);
 void RegisterSessionCommand(CLI::App& app);
 void RegisterEvaluateCommand(CLI::App& app);
+void RegisterReportCommand(CLI::App& app);
 void RegisterSimulateCommand(CLI::App& app);
 void RegisterCompareCommand(CLI::App& app);
 

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   scanloc::app::RegisterRefineCommand(app);
   scanloc::app::RegisterSessionCommand(app);
   scanloc::app::RegisterEvaluateCommand(app);
+  scanloc::app::RegisterReportCommand(app);
   scanloc::app::RegisterSimulateCommand(app);
   scanloc::app::RegisterCompareCommand(app);
   try {

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -142,7 +143,7 @@ void RegisterSessionCommand(CLI::App& app) {
                               {"validated", validated},
                               {"flagged_not_validated", flagged},
                               {"inserted", inserted},
-                              {"map_points", session ? session->point_map().size() : 0},
+                              {"map_points", session ? session->point_map().live_size() : 0},
                               {"wall_time_s", wall_s},
                               {"data_span_s", max_t - min_t},
                               {"first_timestamp_s", first_t},
@@ -151,6 +152,15 @@ void RegisterSessionCommand(CLI::App& app) {
                               {"peak_resident_mb", PeakResidentMegabytes()},
                               {"config", ToJson(config)}};
     if (count == 0) summary["problem"] = "the sequence has no scan";
+    // The inputs as absolute paths, so that `scanloc report` finds them from anywhere (the mounting
+    // in force is config.mounting).
+    auto absolute = [](const std::string& path) {
+      return path.empty() ? nlohmann::json(nullptr)
+                          : nlohmann::json(std::filesystem::absolute(path).lexically_normal().string());
+    };
+    summary["inputs"] = {{"log", absolute(a->log_path)},
+                         {"line_map", absolute(a->line_map_path)},
+                         {"point_map", absolute(a->point_map_path)}};
     const PointMap empty_map(config.point_map);
     run.Finish(session ? session->point_map() : empty_map, summary);
     std::cout << "session: " << count << " scans (" << localised << " localised, " << validated

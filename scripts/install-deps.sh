@@ -2,7 +2,8 @@
 # Installs the Debian packages scanloc builds with; does nothing when they are all present.
 set -euo pipefail
 packages=(build-essential cmake pkg-config libeigen3-dev libnanoflann-dev libceres-dev libpcl-dev
-          libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev zlib1g-dev)
+          libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev zlib1g-dev
+          chromium)  # chromium: the report's browser test (tests/report_browser_test.cpp)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

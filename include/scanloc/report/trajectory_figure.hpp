@@ -1,0 +1,29 @@
+#pragma once
+// The session's trajectory over its final map: the postures kept for every iteration, the
+// flagged ones marked, and the iterations the report draws in detail linked to their sections.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "scanloc/maps/line_map.hpp"
+#include "scanloc/report/run_records.hpp"
+
+namespace scanloc {
+
+struct TrajectoryFigureInput {
+  const std::vector<IterationRow>* rows = nullptr;           // required
+  const std::vector<Eigen::Vector2d>* map_points = nullptr;  // the final map; may be empty
+  const LineMap* line_map = nullptr;                         // may be nullptr or empty
+  std::vector<std::size_t> linked;  // iterations with a section "#iteration-N" on the page
+  bool close_up = false;            // span the trajectory only, not the whole map
+};
+
+// `id` must be unique in the page.
+std::string TrajectoryFigure(const TrajectoryFigureInput& input, const std::string& id);
+
+// True when the trajectory spans less than a third of the whole map's view, so that a close-up
+// shows what the whole view cannot.
+bool TrajectoryCloseUpWorthwhile(const TrajectoryFigureInput& input);
+
+}  // namespace scanloc

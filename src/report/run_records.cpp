@@ -1,0 +1,280 @@
+#include "scanloc/report/run_records.hpp"
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "scanloc/common/parse_error.hpp"
+
+namespace scanloc {
+namespace {
+
+using nlohmann::json;
+
+// A field that is missing or of the wrong type; `path` says where (candidates[2].label).
+[[noreturn]] void Fail(const std::string& path, const std::string& expected) {
+  throw std::runtime_error(path + ": expected " + expected);
+}
+
+std::string Join(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+
+const json& Required(const json& object, const std::string& key, const std::string& path,
+                     const std::string& expected) {
+  const auto it = object.find(key);
+  if (it == object.end() || it->is_null()) Fail(Join(path, key), expected);
+  return *it;
+}
+
+double Number(const json& value, const std::string& path) {
+  if (!value.is_number()) Fail(path, "a number");
+  return value.get<double>();
+}
+
+double RequiredNumber(const json& object, const std::string& key, const std::string& path) {
+  return Number(Required(object, key, path, "a number"), Join(path, key));
+}
+
+std::optional<double> OptionalNumber(const json& object, const std::string& key,
+                                     const std::string& path) {
+  const auto it = object.find(key);
+  if (it == object.end() || it->is_null()) return std::nullopt;
+  return Number(*it, Join(path, key));
+}
+
+int RequiredInteger(const json& object, const std::string& key, const std::string& path) {
+  const json& value = Required(object, key, path, "a whole number");
+  if (!value.is_number_integer()) Fail(Join(path, key), "a whole number");
+  return value.get<int>();
+}
+
+bool RequiredBool(const json& object, const std::string& key, const std::string& path) {
+  const json& value = Required(object, key, path, "true or false");
+  if (!value.is_boolean()) Fail(Join(path, key), "true or false");
+  return value.get<bool>();
+}
+
+bool OptionalBool(const json& object, const std::string& key, const std::string& path) {
+  const auto it = object.find(key);
+  if (it == object.end() || it->is_null()) return false;
+  if (!it->is_boolean()) Fail(Join(path, key), "true or false");
+  return it->get<bool>();
+}
+
+std::string RequiredString(const json& object, const std::string& key, const std::string& path) {
+  const json& value = Required(object, key, path, "a string");
+  if (!value.is_string()) Fail(Join(path, key), "a string");
+  return value.get<std::string>();
+}
+
+std::string OptionalString(const json& object, const std::string& key, const std::string& path) {
+  const auto it = object.find(key);
+  if (it == object.end() || it->is_null()) return "";
+  if (!it->is_string()) Fail(Join(path, key), "a string");
+  return it->get<std::string>();
+}
+
+Pose2D PoseFrom(const json& value, const std::string& path) {
+  if (!value.is_object()) Fail(path, "an object with x_m, y_m, yaw_rad");
+  return {RequiredNumber(value, "x_m", path), RequiredNumber(value, "y_m", path),
+          RequiredNumber(value, "yaw_rad", path)};
+}
+
+Pose2D RequiredPose(const json& object, const std::string& key, const std::string& path) {
+  return PoseFrom(Required(object, key, path, "an object with x_m, y_m, yaw_rad"), Join(path, key));
+}
+
+std::optional<Pose2D> OptionalPose(const json& object, const std::string& key,
+                                   const std::string& path) {
+  const auto it = object.find(key);
+  if (it == object.end() || it->is_null()) return std::nullopt;
+  return PoseFrom(*it, Join(path, key));
+}
+
+const json& RequiredArray(const json& object, const std::string& key, const std::string& path,
+                          const std::string& expected) {
+  const json& value = Required(object, key, path, expected);
+  if (!value.is_array()) Fail(Join(path, key), expected);
+  return value;
+}
+
+LikelihoodTestResult TestFrom(const json& value, const std::string& path) {
+  if (!value.is_object()) Fail(path, "an object with the Likelihood Test's moments");
+  LikelihoodTestResult test;
+  test.valid_pairs = RequiredInteger(value, "valid_pairs", path);
+  test.match_pairs = RequiredInteger(value, "match_pairs", path);
+  test.expect_value_m = RequiredNumber(value, "expect_value_m", path);
+  test.dispersion_m2 = RequiredNumber(value, "dispersion_m2", path);
+  const std::string histogram_path = Join(path, "histogram");
+  const json& histogram =
+      RequiredArray(value, "histogram", path, "an array of whole numbers (slot counts)");
+  for (const json& count : histogram) {
+    if (!count.is_number_integer() || count.get<long long>() < 0)
+      Fail(histogram_path, "an array of whole numbers (slot counts)");
+    test.histogram.push_back(count.get<int>());
+  }
+  return test;
+}
+
+std::optional<double> DistanceExpectValue(const json& object, const std::string& key,
+                                          const std::string& path) {
+  const auto it = object.find(key);
+  if (it == object.end() || it->is_null()) return std::nullopt;
+  if (!it->is_object()) Fail(Join(path, key), "an object with the Likelihood Distance");
+  return OptionalNumber(*it, "expect_value_m", Join(path, key));
+}
+
+CandidateRow CandidateFrom(const json& value, const std::string& path) {
+  if (!value.is_object()) Fail(path, "an object (a candidate)");
+  CandidateRow c;
+  c.label = RequiredString(value, "label", path);
+  c.T_world_robot = RequiredPose(value, "T_world_robot", path);
+  c.T_world_laser = OptionalPose(value, "T_world_laser", path);
+  c.test = TestFrom(Required(value, "likelihood_test", path, "an object"),
+                    Join(path, "likelihood_test"));
+  c.distance_expect_value_m = DistanceExpectValue(value, "likelihood_distance", path);
+  c.cost = OptionalNumber(value, "cost", path);
+  c.valid = RequiredBool(value, "valid", path);
+  c.reason = OptionalString(value, "reason", path);
+  if (const auto rank = OptionalNumber(value, "rank", path)) c.rank = static_cast<int>(*rank);
+  return c;
+}
+
+RefinementRow RefinementFrom(const json& value, const std::string& path) {
+  if (!value.is_object()) Fail(path, "an object (the refinement)");
+  RefinementRow r;
+  r.T_world_laser = RequiredPose(value, "T_world_laser", path);
+  r.converged = OptionalBool(value, "converged", path);
+  if (const auto iterations = OptionalNumber(value, "iterations", path))
+    r.iterations = static_cast<int>(*iterations);
+  r.before = TestFrom(Required(value, "likelihood_test_before", path, "an object"),
+                      Join(path, "likelihood_test_before"));
+  r.after = TestFrom(Required(value, "likelihood_test_after", path, "an object"),
+                     Join(path, "likelihood_test_after"));
+  r.distance_expect_value_before_m = DistanceExpectValue(value, "likelihood_distance_before", path);
+  r.distance_expect_value_after_m = DistanceExpectValue(value, "likelihood_distance_after", path);
+  r.degenerate = OptionalBool(value, "degenerate", path);
+  r.degeneracy = OptionalString(value, "degeneracy", path);
+  r.time_s = OptionalNumber(value, "time_s", path).value_or(0.0);
+  return r;
+}
+
+RefinedCandidateRow RefinedCandidateFrom(const json& value, const std::string& path) {
+  if (!value.is_object()) Fail(path, "an object (a refined candidate)");
+  RefinedCandidateRow r;
+  r.candidate = RequiredString(value, "candidate", path);
+  r.T_world_laser = RequiredPose(value, "T_world_laser", path);
+  r.cost = OptionalNumber(value, "cost", path);
+  r.expect_value_m = OptionalNumber(value, "expect_value_m", path);
+  r.match_ratio = OptionalNumber(value, "match_ratio", path);
+  r.valid = RequiredBool(value, "valid", path);
+  r.reason = OptionalString(value, "reason", path);
+  if (const auto rank = OptionalNumber(value, "rank", path)) r.rank = static_cast<int>(*rank);
+  return r;
+}
+
+IterationRow RowFrom(const json& record) {
+  if (!record.is_object()) Fail("the record", "a JSON object");
+  IterationRow row;
+  const json& index = Required(record, "index", "", "a whole number");
+  if (!index.is_number_unsigned()) Fail("index", "a whole number");
+  row.index = index.get<std::size_t>();
+  row.timestamp_s = RequiredNumber(record, "timestamp_s", "");
+  row.origin = OptionalString(record, "origin", "");
+  row.skipped = RequiredBool(record, "skipped", "");
+  row.first = OptionalBool(record, "first", "");
+  row.prediction = RequiredPose(record, "prediction", "");
+  row.T_world_robot = RequiredPose(record, "T_world_robot", "");
+  row.validated = RequiredBool(record, "validated", "");
+  row.reason = OptionalString(record, "reason", "");
+  row.inserted = OptionalBool(record, "inserted", "");
+  if (const auto points = OptionalNumber(record, "map_points", ""))
+    row.map_points = static_cast<std::size_t>(*points);
+  if (const auto it = record.find("timings_ms"); it != record.end() && it->is_object()) {
+    row.evaluate_ms = OptionalNumber(*it, "evaluate", "timings_ms").value_or(0.0);
+    row.refine_ms = OptionalNumber(*it, "refine", "timings_ms").value_or(0.0);
+    row.insert_ms = OptionalNumber(*it, "insert", "timings_ms").value_or(0.0);
+    row.total_ms = OptionalNumber(*it, "total", "timings_ms").value_or(0.0);
+  }
+  if (record.contains("candidates")) {
+    const json& candidates = RequiredArray(record, "candidates", "", "an array of candidates");
+    for (std::size_t i = 0; i < candidates.size(); ++i)
+      row.candidates.push_back(
+          CandidateFrom(candidates[i], "candidates[" + std::to_string(i) + "]"));
+  }
+  row.chosen = OptionalString(record, "chosen", "");
+  if (record.contains("problems")) {
+    for (const json& problem : RequiredArray(record, "problems", "", "an array of strings")) {
+      if (!problem.is_string()) Fail("problems", "an array of strings");
+      row.problems.push_back(problem.get<std::string>());
+    }
+  }
+  if (const auto it = record.find("refinement"); it != record.end() && !it->is_null())
+    row.refinement = RefinementFrom(*it, "refinement");
+  if (record.contains("refined_candidates")) {
+    const json& refined =
+        RequiredArray(record, "refined_candidates", "", "an array of refined candidates");
+    for (std::size_t i = 0; i < refined.size(); ++i)
+      row.refined_candidates.push_back(
+          RefinedCandidateFrom(refined[i], "refined_candidates[" + std::to_string(i) + "]"));
+  }
+  return row;
+}
+
+}  // namespace
+
+const char* IterationRow::status() const {
+  if (first) return "first";
+  if (skipped) return "skipped";
+  return validated ? "validated" : "flagged";
+}
+
+const CandidateRow* IterationRow::chosen_candidate() const {
+  for (const CandidateRow& c : candidates)
+    if (c.label == chosen) return &c;
+  return nullptr;
+}
+
+IterationRow IterationRowFromJson(const std::string& json_text) {
+  json record;
+  try {
+    record = json::parse(json_text);
+  } catch (const json::parse_error& e) {
+    throw std::runtime_error(std::string("expected one JSON object per line: ") + e.what());
+  }
+  return RowFrom(record);
+}
+
+IterationRows ReadIterationRows(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open " + path);
+  IterationRows result;
+  std::string text;
+  std::size_t line = 0;
+  while (std::getline(in, text)) {
+    ++line;
+    if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const bool last_without_newline = in.eof();
+    IterationRow row;
+    try {
+      row = IterationRowFromJson(text);
+    } catch (const std::runtime_error& e) {
+      if (last_without_newline && !json::accept(text)) {
+        result.truncated_last_line = true;
+        break;
+      }
+      throw ParseError(path, line, e.what());
+    }
+    if (row.index != result.rows.size())
+      throw ParseError(path, line,
+                       "expected the record of iteration " + std::to_string(result.rows.size()) +
+                           " (one record per iteration, in order), got index " +
+                           std::to_string(row.index));
+    result.rows.push_back(std::move(row));
+  }
+  if (in.bad()) throw std::runtime_error("error while reading " + path);
+  return result;
+}
+
+}  // namespace scanloc

@@ -1,0 +1,173 @@
+#include "scanloc/report/svg_canvas.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <unordered_set>
+
+#include "scanloc/report/markup.hpp"
+
+namespace scanloc {
+namespace {
+
+// The arrow head's length and half width as fractions of the arrow's length (with a floor, so
+// that short arrows keep a visible head).
+constexpr double kHeadLengthFraction = 0.32;
+constexpr double kMinHeadLengthPx = 6.0, kMaxHeadLengthPx = 12.0;
+constexpr double kHeadHalfWidthFraction = 0.45;
+
+std::string Attribute(const std::string& name, const std::string& value) {
+  return " " + name + "=\"" + EscapeMarkup(value) + "\"";
+}
+
+std::string Point(const Eigen::Vector2d& p) {
+  return SvgNumber(p.x()) + "," + SvgNumber(p.y());
+}
+
+}  // namespace
+
+std::string SvgNumber(double value) {
+  if (!std::isfinite(value)) return "0";
+  char buffer[48];
+  std::snprintf(buffer, sizeof buffer, "%.1f", value);
+  std::string text = buffer;
+  if (text.size() > 2 && text.compare(text.size() - 2, 2, ".0") == 0) text.resize(text.size() - 2);
+  if (text == "-0") text = "0";
+  return text;
+}
+
+SvgCanvas::SvgCanvas(double width_px, double height_px, std::string id, const std::string& title)
+    : width_px_(width_px), height_px_(height_px), id_(std::move(id)) {
+  if (!(width_px > 0.0) || !(height_px > 0.0))
+    throw std::invalid_argument("SvgCanvas: width and height must be positive");
+  body_ << "<title>" << EscapeMarkup(title) << "</title>\n";
+}
+
+void SvgCanvas::Rect(double x, double y, double width, double height, const std::string& fill,
+                     const std::string& stroke, double stroke_width) {
+  body_ << "<rect x=\"" << SvgNumber(x) << "\" y=\"" << SvgNumber(y) << "\" width=\""
+        << SvgNumber(width) << "\" height=\"" << SvgNumber(height) << "\""
+        << Attribute("fill", fill) << Attribute("stroke", stroke);
+  if (stroke != "none") body_ << " stroke-width=\"" << SvgNumber(stroke_width) << "\"";
+  body_ << "/>\n";
+}
+
+void SvgCanvas::Line(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const std::string& stroke,
+                     double width, const std::string& dash) {
+  body_ << "<line x1=\"" << SvgNumber(a.x()) << "\" y1=\"" << SvgNumber(a.y()) << "\" x2=\""
+        << SvgNumber(b.x()) << "\" y2=\"" << SvgNumber(b.y()) << "\"" << Attribute("stroke", stroke)
+        << " stroke-width=\"" << SvgNumber(width) << "\"";
+  if (!dash.empty()) body_ << Attribute("stroke-dasharray", dash);
+  body_ << "/>\n";
+}
+
+void SvgCanvas::Polyline(const std::vector<Eigen::Vector2d>& points, const std::string& stroke,
+                         double width) {
+  if (points.size() < 2) return;
+  body_ << "<polyline fill=\"none\"" << Attribute("stroke", stroke) << " stroke-width=\""
+        << SvgNumber(width) << "\" stroke-linejoin=\"round\" points=\"";
+  std::string previous;
+  for (const Eigen::Vector2d& p : points) {
+    std::string text = Point(p);
+    if (text == previous) continue;  // a robot standing still adds nothing to the line
+    body_ << text << ' ';
+    previous = std::move(text);
+  }
+  body_ << "\"/>\n";
+}
+
+void SvgCanvas::Circle(const Eigen::Vector2d& centre, double radius, const std::string& fill,
+                       const std::string& stroke, double stroke_width) {
+  body_ << "<circle cx=\"" << SvgNumber(centre.x()) << "\" cy=\"" << SvgNumber(centre.y())
+        << "\" r=\"" << SvgNumber(radius) << "\"" << Attribute("fill", fill)
+        << Attribute("stroke", stroke);
+  if (stroke != "none") body_ << " stroke-width=\"" << SvgNumber(stroke_width) << "\"";
+  body_ << "/>\n";
+}
+
+void SvgCanvas::Dots(const std::vector<Eigen::Vector2d>& points, double diameter_px,
+                     const std::string& colour) {
+  // Zero-length subpaths with round caps draw as dots: about 12 bytes a point.
+  const double cell_px = std::max(0.5, 0.5 * diameter_px);
+  std::unordered_set<long long> taken;
+  std::ostringstream path;
+  for (const Eigen::Vector2d& p : points) {
+    if (!p.allFinite()) continue;
+    const long long cx = std::llround(p.x() / cell_px), cy = std::llround(p.y() / cell_px);
+    if (!taken.insert((cx << 32) ^ (cy & 0xffffffffLL)).second) continue;
+    path << 'M' << SvgNumber(cx * cell_px) << ' ' << SvgNumber(cy * cell_px) << "h0";
+  }
+  if (taken.empty()) return;
+  body_ << "<path fill=\"none\"" << Attribute("stroke", colour) << " stroke-width=\""
+        << SvgNumber(diameter_px) << "\" stroke-linecap=\"round\" d=\"" << path.str() << "\"/>\n";
+}
+
+void SvgCanvas::Arrow(const Eigen::Vector2d& tail, double heading_rad, double length_px,
+                      const std::string& colour, double width_px) {
+  const Eigen::Vector2d direction(std::cos(heading_rad), -std::sin(heading_rad));  // y down
+  const Eigen::Vector2d normal(-direction.y(), direction.x());
+  const Eigen::Vector2d tip = tail + length_px * direction;
+  const double head_length =
+      std::clamp(kHeadLengthFraction * length_px, kMinHeadLengthPx, kMaxHeadLengthPx);
+  const Eigen::Vector2d base = tip - head_length * direction;
+  const double half_width = kHeadHalfWidthFraction * head_length;
+  Line(tail, base, colour, width_px);
+  body_ << "<polygon points=\"" << Point(tip) << ' ' << Point(base + half_width * normal) << ' '
+        << Point(base - half_width * normal) << "\"" << Attribute("fill", colour) << "/>\n";
+}
+
+void SvgCanvas::Text(const Eigen::Vector2d& at, const std::string& text, const TextStyle& style) {
+  body_ << "<text x=\"" << SvgNumber(at.x()) << "\" y=\"" << SvgNumber(at.y()) << "\" font-size=\""
+        << SvgNumber(style.size_px) << "\"" << Attribute("text-anchor", style.anchor)
+        << Attribute("fill", style.colour);
+  if (style.bold) body_ << " font-weight=\"bold\"";
+  body_ << ">" << EscapeMarkup(text) << "</text>\n";
+}
+
+void SvgCanvas::BeginGroup(const std::string& tooltip) {
+  body_ << "<g>";
+  if (!tooltip.empty()) body_ << "<title>" << EscapeMarkup(tooltip) << "</title>";
+  body_ << '\n';
+  open_.push_back('g');
+}
+
+void SvgCanvas::BeginClippedGroup(double x, double y, double width, double height) {
+  const std::string clip_id = id_ + "-clip" + std::to_string(clips_++);
+  body_ << "<clipPath" << Attribute("id", clip_id) << "><rect x=\"" << SvgNumber(x) << "\" y=\""
+        << SvgNumber(y) << "\" width=\"" << SvgNumber(width) << "\" height=\"" << SvgNumber(height)
+        << "\"/></clipPath>\n<g" << Attribute("clip-path", "url(#" + clip_id + ")") << ">\n";
+  open_.push_back('g');
+}
+
+void SvgCanvas::EndGroup() {
+  if (open_.empty() || open_.back() != 'g')
+    throw std::logic_error("SvgCanvas::EndGroup without an open group");
+  body_ << "</g>\n";
+  open_.pop_back();
+}
+
+void SvgCanvas::BeginLink(const std::string& href) {
+  body_ << "<a" << Attribute("href", href) << ">\n";
+  open_.push_back('a');
+}
+
+void SvgCanvas::EndLink() {
+  if (open_.empty() || open_.back() != 'a')
+    throw std::logic_error("SvgCanvas::EndLink without an open link");
+  body_ << "</a>\n";
+  open_.pop_back();
+}
+
+std::string SvgCanvas::Finish() const {
+  if (!open_.empty()) throw std::logic_error("SvgCanvas::Finish: a group or link is open");
+  std::ostringstream svg;
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\"" << Attribute("id", id_) << " width=\""
+      << SvgNumber(width_px_) << "\" height=\"" << SvgNumber(height_px_) << "\" viewBox=\"0 0 "
+      << SvgNumber(width_px_) << ' ' << SvgNumber(height_px_)
+      << "\" font-family=\"sans-serif\" role=\"img\">\n"
+      << body_.str() << "</svg>\n";
+  return svg.str();
+}
+
+}  // namespace scanloc
