@@ -267,7 +267,14 @@ double PointMap::MaxIndexDisplacement() const {
 std::vector<std::pair<std::uint32_t, double>> PointMap::RadiusSearch(const Eigen::Vector2d& centre,
                                                                      double radius_m) const {
   std::vector<std::pair<std::uint32_t, double>> found;
-  if (empty() || !(radius_m > 0.0)) return found;
+  RadiusSearch(centre, radius_m, found);
+  return found;
+}
+
+void PointMap::RadiusSearch(const Eigen::Vector2d& centre, double radius_m,
+                            std::vector<std::pair<std::uint32_t, double>>& found) const {
+  found.clear();
+  if (empty() || !(radius_m > 0.0)) return;
   const double widened = radius_m + MaxIndexDisplacement();
   nanoflann::RadiusResultSet<double, std::uint32_t> result(widened * widened, found);
   const double query[2] = {centre.x(), centre.y()};
@@ -280,7 +287,6 @@ std::vector<std::pair<std::uint32_t, double>> PointMap::RadiusSearch(const Eigen
     if (d2 < radius2) found[kept++] = {index, d2};
   }
   found.resize(kept);
-  return found;
 }
 
 std::vector<std::pair<std::uint32_t, double>> PointMap::KNearest(const Eigen::Vector2d& centre,

@@ -93,7 +93,8 @@ bool FitPointLine(const PointMap& points, const Eigen::Vector2d& hit,
                   const CeresRefinerOptions& options, SurfaceLine& line) {
   // The k nearest within the radius: one radius search, then the k nearest of what it found (the
   // same set as the k nearest filtered by the radius, at the cost of one search instead of two).
-  auto neighbours = points.RadiusSearch(hit, options.line_fit_radius_m);
+  thread_local std::vector<std::pair<std::uint32_t, double>> neighbours;  // reused: no allocation
+  points.RadiusSearch(hit, options.line_fit_radius_m, neighbours);
   const auto k = std::min(neighbours.size(), static_cast<std::size_t>(options.line_fit_neighbours));
   if (k < 2) return false;
   std::nth_element(neighbours.begin(), neighbours.begin() + (k - 1), neighbours.end(),
@@ -320,7 +321,7 @@ RefinementResult RefineCeres(const MapView& map, const LaserScan& scan,
     result.iterations = outer + 1;
     if (built.residual_count < 3) break;
     ceres::Solver::Options solver_options;
-    solver_options.linear_solver_type = ceres::DENSE_QR;
+    solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
     solver_options.max_num_iterations = options.max_solver_iterations;
     solver_options.num_threads = 1;
     solver_options.logging_type = ceres::SILENT;

@@ -77,6 +77,10 @@ class PointMap {
   // with respect to point(i), the cell means.
   std::vector<std::pair<std::uint32_t, double>> RadiusSearch(const Eigen::Vector2d& centre,
                                                              double radius_m) const;
+  // The same into `found` (cleared first), whose capacity is reused: hot loops (simulated scans,
+  // line fits) search thousands of times per scan and need not allocate each time.
+  void RadiusSearch(const Eigen::Vector2d& centre, double radius_m,
+                    std::vector<std::pair<std::uint32_t, double>>& found) const;
   // The k nearest points, nearest first, with squared distances (exact, as RadiusSearch).
   std::vector<std::pair<std::uint32_t, double>> KNearest(const Eigen::Vector2d& centre,
                                                          std::size_t k) const;
