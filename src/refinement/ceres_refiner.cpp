@@ -10,11 +10,15 @@
 #include <stdexcept>
 #include <vector>
 
+#include "scanloc/common/parallel_for.hpp"
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/maps/point_map.hpp"
 
 namespace scanloc {
 namespace {
+
+// Fewer beams than this per core are paired on one thread (a thread costs tens of µs).
+constexpr std::size_t kMinBeamsPerThread = 60;
 
 // The local line of the surface a beam hits: n·q = offset, n a unit normal.
 struct SurfaceLine {
@@ -157,28 +161,41 @@ BuiltProblem BuildProblem(const MapView& map, const LaserScan& scan, const Pose2
                        map.points != nullptr && !map.points->empty();
   // Without a simulated scan (nearest pairing on a point map needs none) no beam has a hit.
   const bool have_sim = sim.size() == scan.size();
+  // Each beam's surface line (a radius search and a fit per beam on point maps: most of the
+  // work) over the cores; the residuals are then added in beam order.
+  std::vector<std::uint8_t> paired(scan.size(), 0);
+  std::vector<SurfaceLine> lines(scan.size());
+  ParallelFor(
+      scan.size(), kMinBeamsPerThread, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+          if (!scan.IsValid(k)) continue;
+          const bool sim_valid = have_sim && sim.IsValid(k);
+          // Pairs that the Likelihood Test would not count as matches are left out (T_Map's role).
+          if (!(sim_valid && std::abs(scan.ranges_m[k] - sim.ranges_m[k]) <= max_residual) &&
+              !nearest)
+            continue;
+          const double phi = pose.yaw_rad + scan.layout.Bearing(k);
+          const Eigen::Vector2d u(std::cos(phi), std::sin(phi));
+          const Eigen::Vector2d end_point = pose.Translation() + scan.ranges_m[k] * u;
+          const Eigen::Vector2d hit =
+              pose.Translation() + (sim_valid ? sim.ranges_m[k] : scan.ranges_m[k]) * u;
+          SurfaceLine& line = lines[k];
+          if (!SurfaceLineOfBeam(map, sim, k, sim_valid, hit, end_point, options, line)) continue;
+          if (std::abs(line.normal.dot(end_point) - line.offset) > max_residual) continue;
+          const double cos_incidence = std::abs(line.normal.dot(u));
+          // Beams that slide along their surface carry no information (and a plain range residual
+          // is undefined there); kGate also drops every beam beyond max_incidence_rad.
+          if (cos_incidence < 1e-3) continue;
+          if (options.incidence == IncidenceWeighting::kGate && cos_incidence < min_cos) continue;
+          paired[k] = 1;
+        }
+      });
   ceres::LossFunction* loss = MakeLoss(scoring.distance);  // shared by every residual
   for (std::size_t k = 0; k < scan.size(); ++k) {
-    if (!scan.IsValid(k)) continue;
-    const bool sim_valid = have_sim && sim.IsValid(k);
-    // Pairs that the Likelihood Test would not count as matches are left out (T_Map's role).
-    if (!(sim_valid && std::abs(scan.ranges_m[k] - sim.ranges_m[k]) <= max_residual) && !nearest)
-      continue;
-    const double phi = pose.yaw_rad + scan.layout.Bearing(k);
-    const Eigen::Vector2d u(std::cos(phi), std::sin(phi));
-    const Eigen::Vector2d end_point = pose.Translation() + scan.ranges_m[k] * u;
-    const Eigen::Vector2d hit =
-        pose.Translation() + (sim_valid ? sim.ranges_m[k] : scan.ranges_m[k]) * u;
-    SurfaceLine line;
-    if (!SurfaceLineOfBeam(map, sim, k, sim_valid, hit, end_point, options, line)) continue;
-    if (std::abs(line.normal.dot(end_point) - line.offset) > max_residual) continue;
-    const double cos_incidence = std::abs(line.normal.dot(u));
-    // Beams that slide along their surface carry no information (and a plain range residual is
-    // undefined there); kGate also drops every beam beyond max_incidence_rad.
-    if (cos_incidence < 1e-3) continue;
-    if (options.incidence == IncidenceWeighting::kGate && cos_incidence < min_cos) continue;
+    if (!paired[k]) continue;
     built.problem->AddResidualBlock(
-        new BeamResidual(scan.layout.Bearing(k), scan.ranges_m[k], line, cosine), loss, parameters);
+        new BeamResidual(scan.layout.Bearing(k), scan.ranges_m[k], lines[k], cosine), loss,
+        parameters);
     built.ranges_used_m.push_back(scan.ranges_m[k]);
     ++built.residual_count;
   }

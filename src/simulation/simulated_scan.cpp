@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scanloc/common/parallel_for.hpp"
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/maps/point_map.hpp"
 
@@ -11,6 +12,8 @@ namespace {
 
 // The point-map scan searches this far first; in a closed room every beam finds its return there.
 constexpr double kFirstRingM = 4.0;
+// Fewer points than this per core are offered on one thread (a thread costs tens of µs).
+constexpr std::size_t kMinPointsPerThread = 1500;
 
 SimulatedScan EmptySimulation(const ScanLayout& layout) {
   const std::size_t beam_count = layout.beam_count;
@@ -166,11 +169,31 @@ SimulatedScan SimulateFromPoints(const PointMap& map, const ScanLayout& layout,
   const double max_range_m = layout.range_max_m;
   const std::vector<Eigen::Vector2d> directions = BeamDirections(layout, T_world_laser);
   // Reused from call to call (a session simulates a few scans per iteration): no allocation.
-  thread_local std::vector<std::pair<std::uint32_t, double>> found;
+  thread_local std::vector<std::pair<std::uint32_t, double>> found_buffer;
+  // A reference, not the name: inside the worker threads `found_buffer` would be their own.
+  std::vector<std::pair<std::uint32_t, double>>& found = found_buffer;
+  // Offers the points found at or beyond min_distance_m, split over the cores: each chunk fills
+  // its own scan, merged in chunk order, which keeps the serial loop's result to the last tie.
+  auto offer_found = [&](double min_distance_m) {
+    const double min2 = min_distance_m * min_distance_m;
+    std::vector<SimulatedScan> partial(ParallelChunkCount(found.size(), kMinPointsPerThread));
+    ParallelFor(found.size(), kMinPointsPerThread,
+                [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+                  SimulatedScan& part = chunk == 0 ? sim : partial[chunk];
+                  if (chunk > 0) part = EmptySimulation(layout);
+                  for (std::size_t i = begin; i < end; ++i)
+                    if (found[i].second >= min2)
+                      OfferPoint(part, map, T_world_laser, directions, options, found[i].first);
+                });
+    for (std::size_t chunk = 1; chunk < partial.size(); ++chunk)
+      for (std::size_t k = 0; k < sim.size(); ++k)
+        if (partial[chunk].IsValid(k))
+          Offer(sim, k, partial[chunk].ranges_m[k], partial[chunk].hit_source[k],
+                partial[chunk].hit_index[k]);
+  };
   const double ring_m = std::min(max_range_m, kFirstRingM);
   map.RadiusSearch(T_world_laser.Translation(), ring_m, found);
-  for (const auto& [index, squared_distance] : found)
-    OfferPoint(sim, map, T_world_laser, directions, options, index);
+  offer_found(0.0);
   if (ring_m >= max_range_m) return sim;
   const double settled_m = ring_m - patch_margin_m;
   bool settled = true;
@@ -178,9 +201,7 @@ SimulatedScan SimulateFromPoints(const PointMap& map, const ScanLayout& layout,
     settled = sim.IsValid(k) && sim.ranges_m[k] <= settled_m;
   if (settled) return sim;
   map.RadiusSearch(T_world_laser.Translation(), max_range_m, found);
-  for (const auto& [index, squared_distance] : found)
-    if (squared_distance >= ring_m * ring_m)
-      OfferPoint(sim, map, T_world_laser, directions, options, index);
+  offer_found(ring_m);
   return sim;
 }
 

@@ -1,0 +1,21 @@
+#pragma once
+// Splits a loop over [0, count) into contiguous chunks run on the machine's cores: the caller's
+// thread takes the first chunk, short-lived threads the others, and all have finished on return.
+// The chunks are in index order, so a caller that merges per-chunk results in chunk order gets
+// what the serial loop gives. Loops shorter than min_chunk per core run serially, here.
+
+#include <cstddef>
+#include <functional>
+
+namespace scanloc {
+
+// The number of chunks ParallelFor uses for `count` items: 1 … hardware threads.
+std::size_t ParallelChunkCount(std::size_t count, std::size_t min_chunk);
+
+// Calls body(chunk, begin, end) once for each of ParallelChunkCount(count, min_chunk) chunks.
+// An exception thrown by a body is rethrown here after every chunk has finished.
+void ParallelFor(
+    std::size_t count, std::size_t min_chunk,
+    const std::function<void(std::size_t chunk, std::size_t begin, std::size_t end)>& body);
+
+}  // namespace scanloc
