@@ -1,0 +1,60 @@
+// Sessions on prefixes of the public logs, end to end through `scanloc session` and the
+// relations metric: a regression guard for the accuracy docs/BENCHMARKS.md reports on the whole
+// logs. Skips when the logs are absent (in CI they are present and these run).
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "run_scanloc.hpp"
+#include "scanloc/io/relations_evaluation.hpp"
+#include "scanloc/io/trajectory.hpp"
+#include "test_support.hpp"
+
+namespace scanloc {
+namespace {
+
+class SessionOnPublicLog : public testing::TemporaryDirTest {
+ protected:
+  // Runs the default session on the first `scans` scans of `log` and scores it on the relations
+  // whose both scans it covered.
+  RelationsEvaluation RunPrefix(const std::string& log, int scans) {
+    const std::string datasets = testing::DatasetsDir();
+    const std::string out = dir_ + "/" + log;
+    const testing::ScanlocRun run =
+        testing::RunScanloc({"session", "--log", datasets + "/" + log + ".clf.gz", "--out", out,
+                             "--max-scans", std::to_string(scans), "--quiet"},
+                            dir_);
+    EXPECT_TRUE(run.exited && run.exit_code == 0) << run;
+    return EvaluateRelations(ReadTumTrajectory(out + "/trajectory.tum"),
+                             ReadRelations(datasets + "/" + log + ".relations"));
+  }
+};
+
+#define SKIP_WITHOUT_LOGS()           \
+  if (testing::DatasetsDir().empty()) \
+  GTEST_SKIP() << "public logs not found: set SCANLOC_DATASETS (default ../shared/datasets)"
+
+// Measured 2026-11-22: 541 relations, 0.0168 ± 0.0134 m, max 0.171 m (raw odometry on the whole
+// log: 7.37 m).
+TEST_F(SessionOnPublicLog, IntelFirst3000ScansStayWithin25MillimetresOnAverage) {
+  SKIP_WITHOUT_LOGS();
+  const RelationsEvaluation e = RunPrefix("intel", 3000);
+  EXPECT_GE(e.matched, 500u);
+  EXPECT_LT(e.translation_m.mean, 0.025);
+  EXPECT_LT(e.translation_m.max, 0.5);  // never diverges
+  EXPECT_LT(e.rotation_deg.mean, 1.0);
+}
+
+// Measured 2026-11-22: 404 relations, 0.0332 ± 0.0259 m, max 0.151 m.
+TEST_F(SessionOnPublicLog, AcesFirst2500ScansStayWithin45MillimetresOnAverage) {
+  SKIP_WITHOUT_LOGS();
+  const RelationsEvaluation e = RunPrefix("aces", 2500);
+  EXPECT_GE(e.matched, 380u);
+  EXPECT_LT(e.translation_m.mean, 0.045);
+  EXPECT_LT(e.translation_m.max, 0.5);
+  EXPECT_LT(e.rotation_deg.mean, 1.0);
+}
+
+}  // namespace
+}  // namespace scanloc
