@@ -240,12 +240,15 @@ std::string RenderRunReport(const RunContents& run, const ReportOptions& options
   }
   page << "</div>\n";
 
+  // The rules as the session applied them: its own E_max replaces validation's (SessionOptions).
+  ValidationOptions session_rules = run.config.validation;
+  session_rules.max_expect_value_m = run.config.session.max_expect_value_m;
   page << "<h2 id=\"moments\">Moments over the session</h2>\n<figure>"
-       << MomentSeriesFigure(rows, run.config.validation, "moments")
+       << MomentSeriesFigure(rows, session_rules, "moments")
        << "<figcaption>For every localised iteration, the expected value (3.9) and the match "
           "ratio MP/NVP of its final posture (after refinement), against rule 2's E_max = "
-       << FormatFixed(100.0 * run.config.validation.max_expect_value_m, 1)
-       << " cm and rule 1's minimum ratio " << FormatFixed(run.config.validation.min_match_ratio, 2)
+       << FormatFixed(100.0 * session_rules.max_expect_value_m, 1)
+       << " cm and rule 1's minimum ratio " << FormatFixed(session_rules.min_match_ratio, 2)
        << ".</figcaption></figure>\n";
 
   page << "<h2 id=\"iterations\">Iterations drawn</h2>\n<p>Selection: " << Escape(selection.rule)

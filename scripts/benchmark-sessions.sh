@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Runs the default session on each public log (Intel, ACES, Fr079), one after the other, scores
+# it on the relations (Kümmerle et al. 2009) and prints the table of docs/BENCHMARKS.md: absolute
+# translational and rotational error, throughput, peak memory and final map size.
+#   scripts/benchmark-sessions.sh [OUT_DIR]     (default: build/sessions; logs in $SCANLOC_DATASETS)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+datasets=${SCANLOC_DATASETS:-../shared/datasets}
+out=${1:-build/sessions}
+scanloc=./build/apps/scanloc
+[ -x "$scanloc" ] || bash scripts/build.sh
+[ -d "$datasets" ] || { echo "benchmark-sessions: no logs at $datasets (set SCANLOC_DATASETS)" >&2; exit 1; }
+mkdir -p "$out"
+for log in intel aces fr079; do
+  echo "benchmark-sessions: $log" >&2
+  "$scanloc" session --log "$datasets/$log.clf.gz" --out "$out/$log" --quiet > "$out/$log.session.txt"
+  "$scanloc" evaluate --trajectory "$out/$log/trajectory.tum" --relations "$datasets/$log.relations" \
+    --json > "$out/$log.evaluation.json"
+done
+python3 - "$out" <<'PY'
+import json, sys
+out = sys.argv[1]
+print("| log | translation [m] | max [m] | rotation [deg] | max [deg] | localised / validated / scans "
+      "| wall [s] | × real time | peak memory [MB] | map points |")
+print("|---|---|---|---|---|---|---|---|---|---|")
+for log in ["intel", "aces", "fr079"]:
+    s = json.load(open(f"{out}/{log}/summary.json"))
+    e = json.load(open(f"{out}/{log}.evaluation.json"))
+    t, r = e["translation_m"], e["rotation_deg"]
+    print(f"| {log} | {t['mean']:.4f} ± {t['std']:.4f} | {t['max']:.3f} | {r['mean']:.3f} ± {r['std']:.3f} "
+          f"| {r['max']:.2f} | {s['localised']} / {s['validated']} / {s['iterations']} "
+          f"| {s['wall_time_s']:.1f} | {s['times_real_time']:.0f} | {s['peak_resident_mb']:.1f} "
+          f"| {s['map_points']} |")
+PY
