@@ -1,5 +1,6 @@
 #pragma once
-// Runs the scanloc executable (SCANLOC_BINARY) without a shell, capturing stdout and stderr.
+// Runs the scanloc executable (SCANLOC_BINARY), or another program, without a shell, capturing
+// stdout and stderr.
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -34,12 +35,10 @@ inline std::ostream& operator<<(std::ostream& os, const ScanlocRun& r) {
             << r.err;
 }
 
-// `scratch_dir` receives the captured streams.
-inline ScanlocRun RunScanloc(const std::vector<std::string>& arguments,
-                             const std::string& scratch_dir) {
+// Runs `words` (argv[0] looked up in PATH, no shell) with stdout and stderr captured in files of
+// `scratch_dir`.
+inline ScanlocRun RunCommand(std::vector<std::string> words, const std::string& scratch_dir) {
   const std::string out_path = scratch_dir + "/stdout.txt", err_path = scratch_dir + "/stderr.txt";
-  std::vector<std::string> words = {SCANLOC_BINARY};
-  words.insert(words.end(), arguments.begin(), arguments.end());
   std::vector<char*> argv;
   for (auto& word : words) argv.push_back(word.data());
   argv.push_back(nullptr);
@@ -50,10 +49,13 @@ inline ScanlocRun RunScanloc(const std::vector<std::string>& arguments,
   posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_path.c_str(),
                                    O_WRONLY | O_CREAT | O_TRUNC, 0644);
   pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  const int spawned = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   ScanlocRun result;
-  if (spawned != 0) return result;
+  if (spawned != 0) {
+    result.err = "cannot start " + words[0];
+    return result;
+  }
   int status = 0;
   waitpid(pid, &status, 0);
   result.exited = WIFEXITED(status);
@@ -61,6 +63,12 @@ inline ScanlocRun RunScanloc(const std::vector<std::string>& arguments,
   result.out = ReadWholeFile(out_path);
   result.err = ReadWholeFile(err_path);
   return result;
+}
+
+// The scanloc executable (SCANLOC_BINARY) with `arguments`; `scratch_dir` receives the streams.
+inline ScanlocRun RunScanloc(std::vector<std::string> arguments, const std::string& scratch_dir) {
+  arguments.insert(arguments.begin(), SCANLOC_BINARY);
+  return RunCommand(std::move(arguments), scratch_dir);
 }
 
 }  // namespace scanloc::testing
