@@ -1,11 +1,6 @@
 // End-to-end tests of the `scanloc` executable: exit status, table, JSON, and the messages for bad
 // input, which must name file and line and never come from a crash.
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -22,9 +17,8 @@
 #include "scanloc/io/trajectory.hpp"
 #include "scanloc/maps/point_map_io.hpp"
 #include "scanloc/simulation/laser_simulator.hpp"
+#include "run_scanloc.hpp"
 #include "test_support.hpp"
-
-extern char** environ;
 
 namespace scanloc {
 namespace {
@@ -34,58 +28,16 @@ const std::string kMap = kClassroom + "/classroom.lines";
 const std::string kScan = kClassroom + "/scan.scan";
 const std::string kCandidates = kClassroom + "/candidates.txt";
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-struct RunResult {
-  bool exited = false;  // ended through exit(), not killed by a signal
-  int exit_code = -1;   // valid when exited
-  int signal = 0;       // the signal that ended it, when not exited
-  std::string out, err;
-};
-
-std::ostream& operator<<(std::ostream& os, const RunResult& r) {
-  return os << (r.exited ? "exit " + std::to_string(r.exit_code)
-                         : "killed by signal " + std::to_string(r.signal))
-            << "\n--- stdout ---\n"
-            << r.out << "--- stderr ---\n"
-            << r.err;
-}
+using RunResult = testing::ScanlocRun;
+using testing::ReadWholeFile;
 
 class CliTest : public testing::TemporaryDirTest {
  protected:
   // Runs SCANLOC_BINARY with `arguments` (no shell: nothing to quote), stdout and stderr captured.
   RunResult Run(const std::vector<std::string>& arguments) const {
-    const std::string out_path = dir_ + "/stdout.txt", err_path = dir_ + "/stderr.txt";
-    std::vector<std::string> words = {SCANLOC_BINARY};
-    words.insert(words.end(), arguments.begin(), arguments.end());
-    std::vector<char*> argv;
-    for (auto& word : words) argv.push_back(word.data());
-    argv.push_back(nullptr);
-
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out_path.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_path.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    pid_t pid = 0;
-    const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    RunResult result;
-    if (spawned != 0) {
+    const RunResult result = testing::RunScanloc(arguments, dir_);
+    if (!result.exited && result.err.rfind("cannot start", 0) == 0)
       ADD_FAILURE() << "cannot start " << SCANLOC_BINARY;
-      return result;
-    }
-    int status = 0;
-    waitpid(pid, &status, 0);
-    result.exited = WIFEXITED(status);
-    result.exit_code = result.exited ? WEXITSTATUS(status) : -1;
-    result.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
-    result.out = ReadText(out_path);
-    result.err = ReadText(err_path);
     return result;
   }
 
@@ -293,7 +245,7 @@ TEST_F(CliTest, SimulateScanWithTheSameSeedIsByteIdentical) {
         Run({"simulate-scan", "--world", kMap, "--pose", "3", "3.5", "0.5", "--beams", "500",
              "--noise", "0.05", "--dropout", "0.1", "--seed", seed, "--out", out});
     EXPECT_TRUE(r.exited && r.exit_code == 0) << r;
-    return ReadText(out);
+    return ReadWholeFile(out);
   };
   const std::string first = simulate("a.scan", "42");
   EXPECT_FALSE(first.empty());
@@ -309,7 +261,7 @@ TEST_F(CliTest, ShippedClassroomScanRegeneratesByteForByte) {
                            "--pose", "1.126", "3.112", "0.0463", "--seed", "7", "--body-sector",
                            "2.7", "3.1416", "--dropout", "0.02", "--out", out});
   ASSERT_TRUE(r.exited && r.exit_code == 0) << r;
-  EXPECT_EQ(ReadText(out), ReadText(kScan));
+  EXPECT_EQ(ReadWholeFile(out), ReadWholeFile(kScan));
 }
 
 TEST_F(CliTest, SimulateScanIntoMissingDirectoryFailsCleanly) {
@@ -391,7 +343,7 @@ TEST_F(CliTest, SessionOnANativeSequenceWritesCompleteOutputsThatEvaluate) {
   EXPECT_EQ(lines, 30);
   // Steps of 5 cm against a threshold of "more than 5 cm": at least every other scan is localised.
   EXPECT_GE(localised, 14);
-  const auto summary = nlohmann::json::parse(ReadText(run + "/summary.json"));
+  const auto summary = nlohmann::json::parse(ReadWholeFile(run + "/summary.json"));
   EXPECT_EQ(summary["iterations"], 30);
   EXPECT_FALSE(summary["interrupted"].get<bool>());
   EXPECT_GT(LoadPointMapPcd(run + "/map.pcd").size(), 100u);

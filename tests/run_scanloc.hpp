@@ -24,12 +24,14 @@ inline std::string ReadWholeFile(const std::string& path) {
 
 struct ScanlocRun {
   bool exited = false;  // ended through exit(), not killed by a signal
-  int exit_code = -1;
+  int exit_code = -1;   // valid when exited
+  int signal = 0;       // the signal that ended it, when not exited
   std::string out, err;
 };
 
 inline std::ostream& operator<<(std::ostream& os, const ScanlocRun& r) {
-  return os << (r.exited ? "exit " + std::to_string(r.exit_code) : std::string("killed"))
+  return os << (r.exited ? "exit " + std::to_string(r.exit_code)
+                         : "killed by signal " + std::to_string(r.signal))
             << "\n--- stdout ---\n"
             << r.out << "--- stderr ---\n"
             << r.err;
@@ -60,6 +62,7 @@ inline ScanlocRun RunCommand(std::vector<std::string> words, const std::string& 
   waitpid(pid, &status, 0);
   result.exited = WIFEXITED(status);
   result.exit_code = result.exited ? WEXITSTATUS(status) : -1;
+  result.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
   result.out = ReadWholeFile(out_path);
   result.err = ReadWholeFile(err_path);
   return result;
