@@ -5,11 +5,8 @@
 #   scripts/benchmark-sessions.sh [OUT_DIR]     (default: build/sessions; logs in $SCANLOC_DATASETS)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-datasets=${SCANLOC_DATASETS:-../shared/datasets}
 out=${1:-build/sessions}
-scanloc=./build/apps/scanloc
-[ -x "$scanloc" ] || bash scripts/build.sh
-[ -d "$datasets" ] || { echo "benchmark-sessions: no logs at $datasets (set SCANLOC_DATASETS)" >&2; exit 1; }
+source scripts/public-logs.sh benchmark-sessions
 mkdir -p "$out"
 for log in intel aces fr079; do
   echo "benchmark-sessions: $log" >&2

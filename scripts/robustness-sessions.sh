@@ -6,11 +6,8 @@
 #   scripts/robustness-sessions.sh [OUT_DIR]   (default: build/robustness; logs in $SCANLOC_DATASETS)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-datasets=${SCANLOC_DATASETS:-../shared/datasets}
 out=${1:-build/robustness}
-scanloc=./build/apps/scanloc
-[ -x "$scanloc" ] || bash scripts/build.sh
-[ -d "$datasets" ] || { echo "robustness-sessions: no logs at $datasets (set SCANLOC_DATASETS)" >&2; exit 1; }
+source scripts/public-logs.sh robustness-sessions
 perturbations=(
   ""
   "session.localise_translation_m=0.051"
