@@ -117,6 +117,11 @@ LikelihoodTestResult TestFrom(const json& value, const std::string& path) {
   return test;
 }
 
+LikelihoodTestResult RequiredTest(const json& object, const std::string& key,
+                                  const std::string& path) {
+  return TestFrom(Required(object, key, path, "an object"), Join(path, key));
+}
+
 std::optional<double> DistanceExpectValue(const json& object, const std::string& key,
                                           const std::string& path) {
   const auto it = object.find(key);
@@ -131,8 +136,7 @@ CandidateRow CandidateFrom(const json& value, const std::string& path) {
   c.label = RequiredString(value, "label", path);
   c.T_world_robot = RequiredPose(value, "T_world_robot", path);
   c.T_world_laser = OptionalPose(value, "T_world_laser", path);
-  c.test = TestFrom(Required(value, "likelihood_test", path, "an object"),
-                    Join(path, "likelihood_test"));
+  c.test = RequiredTest(value, "likelihood_test", path);
   c.distance_expect_value_m = DistanceExpectValue(value, "likelihood_distance", path);
   c.cost = OptionalNumber(value, "cost", path);
   c.valid = RequiredBool(value, "valid", path);
@@ -148,10 +152,8 @@ RefinementRow RefinementFrom(const json& value, const std::string& path) {
   r.converged = OptionalBool(value, "converged", path);
   if (const auto iterations = OptionalNumber(value, "iterations", path))
     r.iterations = static_cast<int>(*iterations);
-  r.before = TestFrom(Required(value, "likelihood_test_before", path, "an object"),
-                      Join(path, "likelihood_test_before"));
-  r.after = TestFrom(Required(value, "likelihood_test_after", path, "an object"),
-                     Join(path, "likelihood_test_after"));
+  r.before = RequiredTest(value, "likelihood_test_before", path);
+  r.after = RequiredTest(value, "likelihood_test_after", path);
   r.distance_expect_value_before_m = DistanceExpectValue(value, "likelihood_distance_before", path);
   r.distance_expect_value_after_m = DistanceExpectValue(value, "likelihood_distance_after", path);
   r.degenerate = OptionalBool(value, "degenerate", path);

@@ -140,24 +140,21 @@ void SvgCanvas::BeginClippedGroup(double x, double y, double width, double heigh
   open_.push_back('g');
 }
 
-void SvgCanvas::EndGroup() {
-  if (open_.empty() || open_.back() != 'g')
-    throw std::logic_error("SvgCanvas::EndGroup without an open group");
-  body_ << "</g>\n";
+void SvgCanvas::Close(char element, const char* caller) {
+  if (open_.empty() || open_.back() != element)
+    throw std::logic_error(std::string("SvgCanvas::") + caller + " without its opening element");
+  body_ << "</" << element << ">\n";
   open_.pop_back();
 }
+
+void SvgCanvas::EndGroup() { Close('g', "EndGroup"); }
 
 void SvgCanvas::BeginLink(const std::string& href) {
   body_ << "<a" << Attribute("href", href) << ">\n";
   open_.push_back('a');
 }
 
-void SvgCanvas::EndLink() {
-  if (open_.empty() || open_.back() != 'a')
-    throw std::logic_error("SvgCanvas::EndLink without an open link");
-  body_ << "</a>\n";
-  open_.pop_back();
-}
+void SvgCanvas::EndLink() { Close('a', "EndLink"); }
 
 std::string SvgCanvas::Finish() const {
   if (!open_.empty()) throw std::logic_error("SvgCanvas::Finish: a group or link is open");

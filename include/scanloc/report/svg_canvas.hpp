@@ -63,6 +63,8 @@ class SvgCanvas {
   std::string id_;
   std::ostringstream body_;
   std::vector<char> open_;  // 'g' for each open group, 'a' for each open link
+  // Writes </element> for the innermost open element, which must be `element`.
+  void Close(char element, const char* caller);
   int clips_ = 0;
 };
 
