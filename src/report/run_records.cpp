@@ -130,6 +130,14 @@ std::optional<double> DistanceExpectValue(const json& object, const std::string&
   return OptionalNumber(*it, "expect_value_m", Join(path, key));
 }
 
+// The rules' verdict on a candidate, tested or refined: valid, reason and rank.
+template <class Row>
+void ReadVerdict(const json& value, const std::string& path, Row& row) {
+  row.valid = RequiredBool(value, "valid", path);
+  row.reason = OptionalString(value, "reason", path);
+  if (const auto rank = OptionalNumber(value, "rank", path)) row.rank = static_cast<int>(*rank);
+}
+
 CandidateRow CandidateFrom(const json& value, const std::string& path) {
   if (!value.is_object()) Fail(path, "an object (a candidate)");
   CandidateRow c;
@@ -139,9 +147,7 @@ CandidateRow CandidateFrom(const json& value, const std::string& path) {
   c.test = RequiredTest(value, "likelihood_test", path);
   c.distance_expect_value_m = DistanceExpectValue(value, "likelihood_distance", path);
   c.cost = OptionalNumber(value, "cost", path);
-  c.valid = RequiredBool(value, "valid", path);
-  c.reason = OptionalString(value, "reason", path);
-  if (const auto rank = OptionalNumber(value, "rank", path)) c.rank = static_cast<int>(*rank);
+  ReadVerdict(value, path, c);
   return c;
 }
 
@@ -170,9 +176,7 @@ RefinedCandidateRow RefinedCandidateFrom(const json& value, const std::string& p
   r.cost = OptionalNumber(value, "cost", path);
   r.expect_value_m = OptionalNumber(value, "expect_value_m", path);
   r.match_ratio = OptionalNumber(value, "match_ratio", path);
-  r.valid = RequiredBool(value, "valid", path);
-  r.reason = OptionalString(value, "reason", path);
-  if (const auto rank = OptionalNumber(value, "rank", path)) r.rank = static_cast<int>(*rank);
+  ReadVerdict(value, path, r);
   return r;
 }
 
