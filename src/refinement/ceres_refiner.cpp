@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <chrono>
+#include <deque>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -140,7 +141,17 @@ bool SurfaceLineOfBeam(const MapView& map, const SimulatedScan& sim, std::size_t
   return sim_valid && FitPointLine(*map.points, hit, options, line);
 }
 
+// A Ceres context shared by every problem this thread builds: without one, each problem
+// creates its own.
+ceres::Context* SharedContext() {
+  thread_local const std::unique_ptr<ceres::Context> context(ceres::Context::Create());
+  return context.get();
+}
+
 struct BuiltProblem {
+  // The residuals, owned here rather than by the problem: a few allocations per problem instead
+  // of one per beam (a deque never moves them). Declared first, destroyed last.
+  std::deque<BeamResidual> residuals;
   std::unique_ptr<ceres::Problem> problem;
   int residual_count = 0;
   std::vector<double> ranges_used_m;
@@ -152,6 +163,10 @@ BuiltProblem BuildProblem(const MapView& map, const LaserScan& scan, const Pose2
   BuiltProblem built;
   ceres::Problem::Options problem_options;
   problem_options.loss_function_ownership = ceres::TAKE_OWNERSHIP;
+  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  // Every block has the same single, valid parameter block: the checks would find nothing.
+  problem_options.disable_all_safety_checks = true;
+  problem_options.context = SharedContext();
   built.problem = std::make_unique<ceres::Problem>(problem_options);
   const double max_residual =
       options.max_residual_m > 0.0 ? options.max_residual_m : scoring.test.match_threshold_m;
@@ -193,9 +208,8 @@ BuiltProblem BuildProblem(const MapView& map, const LaserScan& scan, const Pose2
   ceres::LossFunction* loss = MakeLoss(scoring.distance);  // shared by every residual
   for (std::size_t k = 0; k < scan.size(); ++k) {
     if (!paired[k]) continue;
-    built.problem->AddResidualBlock(
-        new BeamResidual(scan.layout.Bearing(k), scan.ranges_m[k], lines[k], cosine), loss,
-        parameters);
+    built.residuals.emplace_back(scan.layout.Bearing(k), scan.ranges_m[k], lines[k], cosine);
+    built.problem->AddResidualBlock(&built.residuals.back(), loss, parameters);
     built.ranges_used_m.push_back(scan.ranges_m[k]);
     ++built.residual_count;
   }
