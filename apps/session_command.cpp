@@ -31,6 +31,11 @@ double PeakResidentMegabytes() {
   return usage.ru_maxrss / 1024.0;  // Linux reports kilobytes
 }
 
+std::size_t ReversedIncrementsOf(const IterationSource& source) {
+  const auto* carmen = dynamic_cast<const CarmenIterationSource*>(&source);
+  return carmen != nullptr ? carmen->reversed_increments() : 0;
+}
+
 double ProgressOf(const IterationSource& source) {
   if (const auto* carmen = dynamic_cast<const CarmenIterationSource*>(&source))
     return carmen->Progress();
@@ -49,6 +54,7 @@ void RegisterSessionCommand(CLI::App& app) {
     std::optional<double> laser_offset_m;
     std::size_t max_scans = 0;
     bool quiet = false;
+    bool raw_odometry = false;
   };
   auto a = std::make_shared<Arguments>();
   CLI::App* command = app.add_subcommand(
@@ -67,6 +73,9 @@ void RegisterSessionCommand(CLI::App& app) {
                       "laser distance ahead of the robot base (m); overrides the log's PARAM");
   command->add_option("--max-scans", a->max_scans, "stop after this many scans (0: all)");
   command->add_flag("--quiet", a->quiet, "no progress line on stderr");
+  command->add_flag("--raw-odometry", a->raw_odometry,
+                    "use a CARMEN log's odometry as logged, without reversing the increments that "
+                    "move forward while ODOM reports a negative velocity");
   a->config.Register(*command);
   command->final_callback([a] {
     Config config = a->config.Build();
@@ -76,6 +85,7 @@ void RegisterSessionCommand(CLI::App& app) {
     }
     CarmenOptions carmen;
     carmen.laser_offset_m = a->laser_offset_m;
+    carmen.repair_reversed_odometry = !a->raw_odometry;
     auto source = OpenIterationSource(a->log_path, carmen);
     LineMap lines = a->line_map_path.empty() ? LineMap{} : ReadLineMap(a->line_map_path);
     PointMap points = a->point_map_path.empty()
@@ -152,6 +162,9 @@ void RegisterSessionCommand(CLI::App& app) {
                               {"peak_resident_mb", PeakResidentMegabytes()},
                               {"config", ToJson(config)}};
     if (count == 0) summary["problem"] = "the sequence has no scan";
+    const std::size_t reversed = ReversedIncrementsOf(*source);
+    summary["odometry_reversal_repair"] = carmen.repair_reversed_odometry;
+    summary["odometry_reversed_increments"] = reversed;
     // The inputs as absolute paths, so that `scanloc report` finds them from anywhere (the mounting
     // in force is config.mounting).
     auto absolute = [](const std::string& path) {
@@ -167,7 +180,12 @@ void RegisterSessionCommand(CLI::App& app) {
               << " validated, " << flagged << " flagged), map " << summary["map_points"]
               << " points, " << wall_s << " s (" << summary["times_real_time"].get<double>()
               << "× real time), peak " << summary["peak_resident_mb"].get<double>() << " MB"
-              << (g_interrupted ? ", interrupted" : "") << "\n"
+              << (g_interrupted ? ", interrupted" : "") << "\n";
+    if (reversed > 0)
+      std::cout << "odometry: " << reversed
+                << " increments reversed (the log's pose moved forward while ODOM reported a "
+                   "negative velocity; --raw-odometry keeps them)\n";
+    std::cout
               << "wrote " << run.directory()
               << "/{iterations.jsonl,trajectory.tum,map.pcd,summary.json}\n";
   });

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "scanloc/common/parse_error.hpp"
+#include "scanloc/io/sequence_sources.hpp"
 #include "test_support.hpp"
 
 namespace scanloc {
@@ -81,6 +82,8 @@ void ExpectMixedLog(const std::vector<CarmenRecord>& records) {
   EXPECT_NEAR(records[0].odometry.y_m, 2.0, kTolerance);
   EXPECT_NEAR(records[0].odometry.yaw_rad, 0.5, kTolerance);
   EXPECT_TRUE(records[0].scan.ranges_m.empty());
+  ASSERT_TRUE(records[0].velocity_mps.has_value()) << "ODOM's tv";
+  EXPECT_NEAR(*records[0].velocity_mps, 0.1, kTolerance);
 
   const CarmenRecord& laser = records[1];
   EXPECT_EQ(laser.kind, CarmenRecord::Kind::kLaser);
@@ -96,6 +99,7 @@ void ExpectMixedLog(const std::vector<CarmenRecord>& records) {
   EXPECT_NEAR(laser.odometry.x_m, 1.5, kTolerance);
   EXPECT_NEAR(laser.odometry.y_m, 2.5, kTolerance);
   EXPECT_NEAR(laser.odometry.yaw_rad, 0.75, kTolerance);
+  EXPECT_FALSE(laser.velocity_mps.has_value()) << "FLASER carries no velocity";
 
   EXPECT_EQ(records[2].kind, CarmenRecord::Kind::kOdometry);
   EXPECT_EQ(records[2].line, 8u);
@@ -160,6 +164,8 @@ TEST(CarmenReader, ReadsRobotLaser1WithItsOwnLayoutRangeLimitAndRobotPose) {
   EXPECT_NEAR(records[0].odometry.y_m, 6.5, kTolerance);
   EXPECT_NEAR(records[0].odometry.yaw_rad, 0.2, kTolerance);
   EXPECT_NEAR(records[0].timestamp_s, 300.5, kTolerance);
+  ASSERT_TRUE(records[0].velocity_mps.has_value());
+  EXPECT_NEAR(*records[0].velocity_mps, 0.3, kTolerance);
   EXPECT_NO_THROW(scan.CheckConsistent());
 
   // One remission per beam becomes the reflectance.
@@ -388,6 +394,50 @@ TEST(CarmenReaderDatasets, IntelHasItsScansAndOdometry) {
   EXPECT_EQ(counts.lasers, 13631u);
   EXPECT_EQ(counts.odometry, 26915u);
   EXPECT_EQ(counts.first_beams, 180u);
+}
+
+// Reads a log scan by scan as a session does, with and without the reversal repair: the number of
+// increments reversed, and how many scans' odometry differs from the log's.
+struct Repairs {
+  std::size_t reversed = 0, changed = 0, scans = 0;
+};
+
+Repairs CountRepairs(const std::string& path) {
+  CarmenOptions raw_options;
+  raw_options.repair_reversed_odometry = false;
+  CarmenIterationSource repaired(path), raw(path, raw_options);
+  Repairs repairs;
+  Iteration a, b;
+  while (repaired.Next(a)) {
+    EXPECT_TRUE(raw.Next(b));
+    ++repairs.scans;
+    repairs.changed += a.odometry->x_m != b.odometry->x_m || a.odometry->y_m != b.odometry->y_m ||
+                       a.odometry->yaw_rad != b.odometry->yaw_rad;
+  }
+  repairs.reversed = repaired.reversed_increments();
+  return repairs;
+}
+
+TEST(CarmenReaderDatasets, Fr079OdometryMovingForwardWhileReversingIsRepaired) {
+  const std::string dir = testing::DatasetsDir();
+  if (dir.empty()) GTEST_SKIP() << "public datasets not found (set SCANLOC_DATASETS)";
+  const Repairs repairs = CountRepairs(dir + "/fr079.clf.gz");
+  EXPECT_EQ(repairs.scans, 4934u);
+  // Measured: 188 of 4,934 scan increments (328 of 7,314 moving ODOM increments report tv < 0
+  // and move forward; none moves backward).
+  EXPECT_EQ(repairs.reversed, 188u);
+  EXPECT_GT(repairs.changed, repairs.reversed) << "later scans follow on from the repaired poses";
+}
+
+TEST(CarmenReaderDatasets, AcesAndIntelOdometryPassesUnchangedBitForBit) {
+  const std::string dir = testing::DatasetsDir();
+  if (dir.empty()) GTEST_SKIP() << "public datasets not found (set SCANLOC_DATASETS)";
+  for (const char* log : {"/aces.clf.gz", "/intel.clf.gz"}) {
+    const Repairs repairs = CountRepairs(dir + log);
+    EXPECT_GT(repairs.scans, 7000u) << log;
+    EXPECT_EQ(repairs.reversed, 0u) << log;
+    EXPECT_EQ(repairs.changed, 0u) << log;
+  }
 }
 
 }  // namespace

@@ -193,6 +193,7 @@ struct CarmenReader::Impl {
             .Normalized();
     record.timestamp_s = message.Finite(pose + 6, kTimestampWhat);
     message.Finite(pose + 8, kTimestampWhat);  // logger_timestamp, after the hostname
+    record.velocity_mps.reset();
     record.kind = CarmenRecord::Kind::kLaser;
   }
 
@@ -252,7 +253,8 @@ struct CarmenReader::Impl {
         Pose2D(message.Finite(pose + 3, kCoordinateWhat), message.Finite(pose + 4, kCoordinateWhat),
                message.Finite(pose + 5, kAngleWhat))
             .Normalized();
-    for (std::size_t i = 6; i < 11; ++i) message.Finite(pose + i, kValueWhat);  // tv .. turn_axis
+    record.velocity_mps = message.Finite(pose + 6, kValueWhat);                // tv
+    for (std::size_t i = 7; i < 11; ++i) message.Finite(pose + i, kValueWhat);  // rv .. turn_axis
     record.timestamp_s = message.Finite(pose + 11, kTimestampWhat);
     message.Finite(pose + 13, kTimestampWhat);  // logger_timestamp, after the hostname
     record.kind = CarmenRecord::Kind::kLaser;
@@ -263,7 +265,8 @@ struct CarmenReader::Impl {
     record.odometry = Pose2D(message.Finite(1, kCoordinateWhat), message.Finite(2, kCoordinateWhat),
                              message.Finite(3, kAngleWhat))
                           .Normalized();
-    for (std::size_t i = 4; i < 7; ++i) message.Finite(i, kVelocityWhat);  // tv rv accel
+    record.velocity_mps = message.Finite(4, kVelocityWhat);                 // tv
+    for (std::size_t i = 5; i < 7; ++i) message.Finite(i, kVelocityWhat);  // rv accel
     record.timestamp_s = message.Finite(7, kTimestampWhat);
     message.Finite(9, kTimestampWhat);  // logger_timestamp, after the hostname
     record.kind = CarmenRecord::Kind::kOdometry;

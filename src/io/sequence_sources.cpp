@@ -64,16 +64,17 @@ std::vector<double> Values(const json& array, const std::string& path, std::size
 }  // namespace
 
 CarmenIterationSource::CarmenIterationSource(const std::string& path, CarmenOptions options)
-    : path_(path), reader_(path, std::move(options)) {}
+    : path_(path), repair_(options.repair_reversed_odometry), reader_(path, std::move(options)) {}
 
 bool CarmenIterationSource::Next(Iteration& iteration) {
   CarmenRecord record;
   while (reader_.Next(record)) {
+    if (record.velocity_mps) reversal_.AddVelocity(*record.velocity_mps);
     if (record.kind != CarmenRecord::Kind::kLaser) continue;
     iteration = Iteration{};
     iteration.timestamp_s = record.timestamp_s;
     iteration.scan = std::move(record.scan);
-    iteration.odometry = record.odometry;
+    iteration.odometry = repair_ ? reversal_.Repair(record.odometry) : record.odometry;
     iteration.origin = path_ + ":" + std::to_string(record.line);
     return true;
   }

@@ -20,6 +20,9 @@ struct CarmenOptions {
   // The laser's distance ahead of the robot's base along its heading; overrides the log's
   // PARAM robot_frontlaser_offset when set. Metres.
   std::optional<double> laser_offset_m;
+  // For sequences read scan by scan (CarmenIterationSource): repair odometry increments that move
+  // forward while every ODOM logged in between reports a negative velocity (OdometryReversalRepair).
+  bool repair_reversed_odometry = true;
   // Throws std::invalid_argument for a non-positive or non-finite range or a non-finite offset.
   void Validate() const;
 };
@@ -32,6 +35,9 @@ struct CarmenRecord {
   Pose2D odometry;           // T_odom_robot: ODOM's x y theta, FLASER's odom_x odom_y odom_theta,
                              // ROBOTLASER1's robot pose
   std::size_t line = 0;      // 1-based line of the message in the log
+  // ODOM's and ROBOTLASER1's translational velocity tv (m/s, negative when reversing); FLASER
+  // carries none.
+  std::optional<double> velocity_mps;
 };
 
 // Reads FLASER, ROBOTLASER1, ODOM and PARAM robot_frontlaser_offset messages in file order,

@@ -18,21 +18,27 @@
 #include <vector>
 
 #include "scanloc/io/carmen_log.hpp"
+#include "scanloc/io/odometry_reversal.hpp"
 #include "scanloc/session/iteration.hpp"
 
 namespace scanloc {
 
-// One iteration per laser message (FLASER or ROBOTLASER1), its odometry the message's own.
+// One iteration per laser message (FLASER or ROBOTLASER1), its odometry the message's own, repaired
+// where the log's pose moved forward while the robot reversed (options.repair_reversed_odometry).
 class CarmenIterationSource : public IterationSource {
  public:
   explicit CarmenIterationSource(const std::string& path, CarmenOptions options = {});
   bool Next(Iteration& iteration) override;
   LaserMounting mounting() const override { return reader_.mounting(); }
   double Progress() const { return reader_.Progress(); }
+  // Odometry increments reversed so far (0 when the repair is off).
+  std::size_t reversed_increments() const { return reversal_.repaired(); }
 
  private:
   std::string path_;
+  bool repair_;
   CarmenReader reader_;
+  OdometryReversalRepair reversal_;
 };
 
 class SequenceFileSource : public IterationSource {
