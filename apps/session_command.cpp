@@ -168,8 +168,9 @@ void RegisterSessionCommand(CLI::App& app) {
     // The inputs as absolute paths, so that `scanloc report` finds them from anywhere (the mounting
     // in force is config.mounting).
     auto absolute = [](const std::string& path) {
-      return path.empty() ? nlohmann::json(nullptr)
-                          : nlohmann::json(std::filesystem::absolute(path).lexically_normal().string());
+      return path.empty()
+                 ? nlohmann::json(nullptr)
+                 : nlohmann::json(std::filesystem::absolute(path).lexically_normal().string());
     };
     summary["inputs"] = {{"log", absolute(a->log_path)},
                          {"line_map", absolute(a->line_map_path)},
@@ -185,8 +186,7 @@ void RegisterSessionCommand(CLI::App& app) {
       std::cout << "odometry: " << reversed
                 << " increments reversed (the log's pose moved forward while ODOM reported a "
                    "negative velocity; --raw-odometry keeps them)\n";
-    std::cout
-              << "wrote " << run.directory()
+    std::cout << "wrote " << run.directory()
               << "/{iterations.jsonl,trajectory.tum,map.pcd,summary.json}\n";
   });
 }

@@ -55,7 +55,7 @@ TEST(OdometryReversalRepair, IncrementsAreKeptUnlessEveryVelocitySinceTheLastSca
   repair.AddVelocity(0.2);  // the robot changed direction in between: the log is trusted
   ExpectPose(repair.Repair({0.1, 0.0, 0.0}), {0.1, 0.0, 0.0});
   ExpectPose(repair.Repair({0.2, 0.0, 0.0}), {0.2, 0.0, 0.0});  // no velocity logged
-  repair.AddVelocity(-0.005);  // below the reversing speed
+  repair.AddVelocity(-0.005);                                   // below the reversing speed
   ExpectPose(repair.Repair({0.3, 0.0, 0.0}), {0.3, 0.0, 0.0});
   repair.AddVelocity(-0.5);  // the log already moved backward: right as it is
   ExpectPose(repair.Repair({0.2, 0.0, 0.0}), {0.2, 0.0, 0.0});

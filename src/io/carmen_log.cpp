@@ -253,7 +253,7 @@ struct CarmenReader::Impl {
         Pose2D(message.Finite(pose + 3, kCoordinateWhat), message.Finite(pose + 4, kCoordinateWhat),
                message.Finite(pose + 5, kAngleWhat))
             .Normalized();
-    record.velocity_mps = message.Finite(pose + 6, kValueWhat);                // tv
+    record.velocity_mps = message.Finite(pose + 6, kValueWhat);                 // tv
     for (std::size_t i = 7; i < 11; ++i) message.Finite(pose + i, kValueWhat);  // rv .. turn_axis
     record.timestamp_s = message.Finite(pose + 11, kTimestampWhat);
     message.Finite(pose + 13, kTimestampWhat);  // logger_timestamp, after the hostname
@@ -265,7 +265,7 @@ struct CarmenReader::Impl {
     record.odometry = Pose2D(message.Finite(1, kCoordinateWhat), message.Finite(2, kCoordinateWhat),
                              message.Finite(3, kAngleWhat))
                           .Normalized();
-    record.velocity_mps = message.Finite(4, kVelocityWhat);                 // tv
+    record.velocity_mps = message.Finite(4, kVelocityWhat);                // tv
     for (std::size_t i = 5; i < 7; ++i) message.Finite(i, kVelocityWhat);  // rv accel
     record.timestamp_s = message.Finite(7, kTimestampWhat);
     message.Finite(9, kTimestampWhat);  // logger_timestamp, after the hostname

@@ -5,8 +5,8 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <chrono>
-#include <deque>
 #include <cmath>
+#include <deque>
 #include <memory>
 #include <stdexcept>
 #include <vector>

@@ -21,7 +21,8 @@ struct CarmenOptions {
   // PARAM robot_frontlaser_offset when set. Metres.
   std::optional<double> laser_offset_m;
   // For sequences read scan by scan (CarmenIterationSource): repair odometry increments that move
-  // forward while every ODOM logged in between reports a negative velocity (OdometryReversalRepair).
+  // forward while every ODOM logged in between reports a negative velocity
+  // (OdometryReversalRepair).
   bool repair_reversed_odometry = true;
   // Throws std::invalid_argument for a non-positive or non-finite range or a non-finite offset.
   void Validate() const;
