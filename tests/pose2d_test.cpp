@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <random>
+#include <vector>
 
 namespace scanloc {
 namespace {
@@ -13,6 +15,32 @@ TEST(NormalizeAngle, WrapsIntoHalfOpenMinusPiPi) {
   EXPECT_NEAR(NormalizeAngle(-M_PI), M_PI, 1e-12);
   EXPECT_NEAR(NormalizeAngle(-3.5 * M_PI), 0.5 * M_PI, 1e-12);
   EXPECT_NEAR(NormalizeAngle(2.0 * M_PI + 0.1), 0.1, 1e-12);
+}
+
+TEST(NormalizeAngle, FastPathEqualsRemainderBitForBit) {
+  // The inline fast path must give std::remainder's result exactly: sessions are compared byte
+  // for byte across builds.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> wide(-30.0, 30.0);
+  std::vector<double> angles = {M_PI,
+                                -M_PI,
+                                3.0 * M_PI,
+                                -3.0 * M_PI,
+                                9.0,
+                                -9.0,
+                                std::nextafter(M_PI, 10.0),
+                                std::nextafter(-M_PI, -10.0),
+                                std::nextafter(9.0, 0.0),
+                                std::nextafter(-9.0, 0.0),
+                                0.0,
+                                -0.0};
+  for (int i = 0; i < 200000; ++i) angles.push_back(wide(rng));
+  for (const double a : angles) {
+    const double fast = NormalizeAngle(a), slow = NormalizeAngleSlow(a);
+    ASSERT_EQ(std::memcmp(&fast, &slow, sizeof fast), 0) << "angle " << a;
+  }
+  EXPECT_TRUE(std::isnan(NormalizeAngle(std::nan(""))));
+  EXPECT_TRUE(std::isinf(NormalizeAngle(INFINITY)));
 }
 
 TEST(Pose2D, ComposeMatchesHandComputedTransform) {

@@ -4,7 +4,7 @@
 
 namespace scanloc {
 
-double NormalizeAngle(double angle_rad) {
+double NormalizeAngleSlow(double angle_rad) {
   if (!std::isfinite(angle_rad)) return angle_rad;
   double a = std::remainder(angle_rad, 2.0 * M_PI);  // in [-π, π]
   if (a <= -M_PI) a += 2.0 * M_PI;

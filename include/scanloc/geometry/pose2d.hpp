@@ -7,8 +7,17 @@
 
 namespace scanloc {
 
-// Wraps an angle to (-π, π].
-double NormalizeAngle(double angle_rad);
+double NormalizeAngleSlow(double angle_rad);
+
+// Wraps an angle to (-π, π]. Inline, with the common cases first: simulated scans wrap every map
+// point's bearing. Within one turn of the interval, x ∓ 2π is exact (Sterbenz), so the result
+// equals std::remainder's bit for bit.
+inline double NormalizeAngle(double angle_rad) {
+  if (angle_rad > -M_PI && angle_rad <= M_PI) return angle_rad;
+  if (angle_rad > M_PI && angle_rad < 9.0) return angle_rad - 2.0 * M_PI;
+  if (angle_rad <= -M_PI && angle_rad > -9.0) return angle_rad + 2.0 * M_PI;
+  return NormalizeAngleSlow(angle_rad);
+}
 
 // T_a_b: the pose of frame b expressed in frame a. Composition T_a_c = T_a_b * T_b_c.
 struct Pose2D {
