@@ -34,6 +34,10 @@ TEST_F(CarvingTest, APointSeenThroughTwiceMoreThanSeenIsRemoved) {
   EXPECT_FALSE(map_.alive(walls));
   // Searches no longer see it, the walls are all there.
   EXPECT_TRUE(map_.RadiusSearch({7.0, 4.0}, 0.5).empty());
+  // A radius that covers the whole map lists the live points without the tree: not this one.
+  const auto everything = map_.RadiusSearch({7.0, 4.0}, 100.0);
+  EXPECT_EQ(everything.size(), walls);
+  for (const auto& [index, squared_distance] : everything) EXPECT_NE(index, walls);
   const auto nearest = map_.KNearest({7.0, 4.0}, 1);
   ASSERT_EQ(nearest.size(), 1u);
   EXPECT_NEAR(std::sqrt(nearest[0].second), 3.0, 0.05);  // the east wall at x = 10

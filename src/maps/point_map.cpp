@@ -57,6 +57,9 @@ struct PointMap::Storage {
   std::vector<std::uint16_t> misses;     // scans that saw through the point (carving)
   std::vector<std::uint8_t> alive;       // 0 once carving removed the point
   std::size_t removed = 0;
+  // Bounds of `indexed`, every point ever added: a search whose radius covers them lists the
+  // live points directly instead of walking the tree to every leaf.
+  Eigen::AlignedBox2d bounds;
   std::unordered_map<std::int64_t, std::uint32_t> occupied_cells;
   CloudAdaptor adaptor{&indexed};
   KdTree tree{2, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16)};
@@ -167,6 +170,7 @@ std::size_t PointMap::Add(const std::vector<Eigen::Vector2d>& points_world,
     }
     s.points.push_back(p);
     s.indexed.push_back(p);
+    s.bounds.extend(p);
     s.spacings.push_back(spacing);
     s.normals.push_back(normal);
     s.samples.push_back(1);
@@ -276,11 +280,25 @@ void PointMap::RadiusSearch(const Eigen::Vector2d& centre, double radius_m,
   found.clear();
   if (empty() || !(radius_m > 0.0)) return;
   const double widened = radius_m + MaxIndexDisplacement();
+  const double radius2 = radius_m * radius_m;
+  const Storage& s = *storage_;
+  const Eigen::Vector2d farthest =
+      (s.bounds.max() - centre).cwiseAbs().cwiseMax((s.bounds.min() - centre).cwiseAbs());
+  if (farthest.squaredNorm() < widened * widened) {
+    // The tree would return every point (long-range simulated scans of a building-sized map):
+    // the same set, in index order, without the walk.
+    found.reserve(live_size());
+    for (std::size_t i = 0; i < s.points.size(); ++i) {
+      if (!s.alive[i]) continue;
+      const double d2 = (s.points[i] - centre).squaredNorm();
+      if (d2 < radius2) found.emplace_back(static_cast<std::uint32_t>(i), d2);
+    }
+    return;
+  }
   nanoflann::RadiusResultSet<double, std::uint32_t> result(widened * widened, found);
   const double query[2] = {centre.x(), centre.y()};
   storage_->tree.findNeighbors(result, query, nanoflann::SearchParams(32, 0.0f, false));
   // Distances to the cell means, and only those within the radius.
-  const double radius2 = radius_m * radius_m;
   std::size_t kept = 0;
   for (const auto& [index, unused] : found) {
     const double d2 = (storage_->points[index] - centre).squaredNorm();
