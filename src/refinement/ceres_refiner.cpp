@@ -102,9 +102,14 @@ bool FitPointLine(const PointMap& points, const Eigen::Vector2d& hit,
   points.RadiusSearch(hit, options.line_fit_radius_m, neighbours);
   const auto k = std::min(neighbours.size(), static_cast<std::size_t>(options.line_fit_neighbours));
   if (k < 2) return false;
-  std::nth_element(neighbours.begin(), neighbours.begin() + (k - 1), neighbours.end(),
-                   [](const auto& a, const auto& b) { return a.second < b.second; });
+  // Nearest first, ties by index: the fit's sums then do not depend on the order the search
+  // found the points in.
+  const auto nearer = [](const auto& a, const auto& b) {
+    return a.second < b.second || (a.second == b.second && a.first < b.first);
+  };
+  std::nth_element(neighbours.begin(), neighbours.begin() + (k - 1), neighbours.end(), nearer);
   neighbours.resize(k);
+  std::sort(neighbours.begin(), neighbours.end(), nearer);
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
   for (const auto& [index, squared_distance] : neighbours) centroid += points.point(index);
   centroid /= static_cast<double>(k);
