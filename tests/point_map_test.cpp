@@ -75,11 +75,14 @@ void ExpectQueriesMatchBruteForce(const PointMap& map, double half_extent_m, std
   // Every fifth query covers the whole map (as a long-range simulated scan does), which lists the
   // points without the tree.
   std::uniform_real_distribution<double> covering(3.2 * half_extent_m, 4.0 * half_extent_m);
+  // And every fifth is short (as the refinement's line fits), which the search grid answers.
+  std::uniform_real_distribution<double> short_radius(0.05, 0.8);
   // The last k asks for more than the map holds when the map is small.
   const std::size_t ks[] = {1, 2, 7, 40, 250, std::min<std::size_t>(map.size() + 3, 1003)};
   for (int q = 0; q < query_count; ++q) {
     const Eigen::Vector2d centre(coordinate(rng), coordinate(rng));
-    const double radius_m = q % 5 == 4 ? covering(rng) : radius(rng);
+    const double radius_m =
+        q % 5 == 4 ? covering(rng) : (q % 5 == 2 ? short_radius(rng) : radius(rng));
     const std::string where = "map of " + std::to_string(map.size()) + " points, query " +
                               std::to_string(q) + " at (" + std::to_string(centre.x()) + ", " +
                               std::to_string(centre.y()) + ")";

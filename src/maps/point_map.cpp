@@ -34,11 +34,23 @@ using KdTree =
     nanoflann::KDTreeSingleIndexDynamicAdaptor<nanoflann::L2_Simple_Adaptor<double, CloudAdaptor>,
                                                CloudAdaptor, 2, std::uint32_t>;
 
-std::int64_t CellKey(const Eigen::Vector2d& p, double cell_size_m) {
-  const auto ix = static_cast<std::int64_t>(std::floor(p.x() / cell_size_m));
-  const auto iy = static_cast<std::int64_t>(std::floor(p.y() / cell_size_m));
+std::int64_t CellIndex(double coordinate, double cell_size_m) {
+  return static_cast<std::int64_t>(std::floor(coordinate / cell_size_m));
+}
+
+std::int64_t CellKey(std::int64_t ix, std::int64_t iy) {
   return (ix << 32) ^ (iy & 0xffffffffLL);
 }
+
+std::int64_t CellKey(const Eigen::Vector2d& p, double cell_size_m) {
+  return CellKey(CellIndex(p.x(), cell_size_m), CellIndex(p.y(), cell_size_m));
+}
+
+// Side of the search grid's cells. Short searches (the refinement's line fits: 0.3 m, several
+// thousand per scan) visit the few cells they overlap instead of the dynamic k-d tree's
+// sub-trees; longer ones use the tree.
+constexpr double kSearchCellM = 0.5;
+constexpr std::int64_t kMaxSearchCells = 16;
 
 }  // namespace
 
@@ -61,6 +73,9 @@ struct PointMap::Storage {
   // live points directly instead of walking the tree to every leaf.
   Eigen::AlignedBox2d bounds;
   std::unordered_map<std::int64_t, std::uint32_t> occupied_cells;
+  // Every point ever added, by the kSearchCellM cell of its first sample (dead ones included:
+  // searches skip them).
+  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> search_cells;
   CloudAdaptor adaptor{&indexed};
   KdTree tree{2, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16)};
 };
@@ -168,6 +183,7 @@ std::size_t PointMap::Add(const std::vector<Eigen::Vector2d>& points_world,
       }
       continue;
     }
+    s.search_cells[CellKey(p, kSearchCellM)].push_back(static_cast<std::uint32_t>(s.points.size()));
     s.points.push_back(p);
     s.indexed.push_back(p);
     s.bounds.extend(p);
@@ -293,6 +309,25 @@ void PointMap::RadiusSearch(const Eigen::Vector2d& centre, double radius_m,
       const double d2 = (s.points[i] - centre).squaredNorm();
       if (d2 < radius2) found.emplace_back(static_cast<std::uint32_t>(i), d2);
     }
+    return;
+  }
+  // Cells keyed by first samples, which lie within `widened` of the centre for every mean
+  // within the radius: the cells over [centre ± widened] hold them all.
+  const std::int64_t cell_x0 = CellIndex(centre.x() - widened, kSearchCellM);
+  const std::int64_t cell_x1 = CellIndex(centre.x() + widened, kSearchCellM);
+  const std::int64_t cell_y0 = CellIndex(centre.y() - widened, kSearchCellM);
+  const std::int64_t cell_y1 = CellIndex(centre.y() + widened, kSearchCellM);
+  if ((cell_x1 - cell_x0 + 1) * (cell_y1 - cell_y0 + 1) <= kMaxSearchCells) {
+    for (std::int64_t ix = cell_x0; ix <= cell_x1; ++ix)
+      for (std::int64_t iy = cell_y0; iy <= cell_y1; ++iy) {
+        const auto cell = s.search_cells.find(CellKey(ix, iy));
+        if (cell == s.search_cells.end()) continue;
+        for (const std::uint32_t i : cell->second) {
+          if (!s.alive[i]) continue;
+          const double d2 = (s.points[i] - centre).squaredNorm();
+          if (d2 < radius2) found.emplace_back(i, d2);
+        }
+      }
     return;
   }
   nanoflann::RadiusResultSet<double, std::uint32_t> result(widened * widened, found);
