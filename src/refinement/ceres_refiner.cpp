@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -40,13 +41,26 @@ struct SurfaceLine {
 class BeamResidual : public ceres::SizedCostFunction<1, 3> {
  public:
   BeamResidual(double bearing_rad, double range_m, const SurfaceLine& line, bool cosine)
-      : bearing_rad_(bearing_rad), range_m_(range_m), line_(line), cosine_(cosine) {}
+      : cos_bearing_(std::cos(bearing_rad)),
+        sin_bearing_(std::sin(bearing_rad)),
+        range_m_(range_m),
+        line_(line),
+        cosine_(cosine) {}
 
   bool Evaluate(double const* const* parameters, double* residual,
                 double** jacobians) const override {
     const double* pose = parameters[0];
-    const double phi = pose[2] + bearing_rad_;
-    const double c = std::cos(phi), s = std::sin(phi);
+    // Every beam of a problem is evaluated at the same heading, one after the other: its cosine
+    // and sine are computed once, and u = (cos φ, sin φ), φ = θ + bearing, by the angle sum.
+    thread_local double heading = std::numeric_limits<double>::quiet_NaN();
+    thread_local double cos_heading = 1.0, sin_heading = 0.0;
+    if (!(pose[2] == heading)) {
+      heading = pose[2];
+      cos_heading = std::cos(heading);
+      sin_heading = std::sin(heading);
+    }
+    const double c = cos_heading * cos_bearing_ - sin_heading * sin_bearing_;
+    const double s = sin_heading * cos_bearing_ + cos_heading * sin_bearing_;
     const Eigen::Vector2d& n = line_.normal;
     const double nu = n.x() * c + n.y() * s;
     const double nu_dot = -n.x() * s + n.y() * c;
@@ -72,7 +86,8 @@ class BeamResidual : public ceres::SizedCostFunction<1, 3> {
   }
 
  private:
-  double bearing_rad_;
+  double cos_bearing_;
+  double sin_bearing_;
   double range_m_;
   SurfaceLine line_;
   bool cosine_;
