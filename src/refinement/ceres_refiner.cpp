@@ -6,13 +6,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <deque>
 #include <limits>
 #include <memory>
 #include <stdexcept>
 #include <vector>
 
 #include "scanloc/common/parallel_for.hpp"
+#include "scanloc/refinement/beam_residuals.hpp"
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/maps/point_map.hpp"
 
@@ -21,77 +21,6 @@ namespace {
 
 // Fewer beams than this per core are paired on one thread (a thread costs tens of µs).
 constexpr std::size_t kMinBeamsPerThread = 60;
-
-// The local line of the surface a beam hits: n·q = offset, n a unit normal.
-struct SurfaceLine {
-  Eigen::Vector2d normal;
-  double offset = 0.0;
-};
-
-// One beam's residual against its surface line, for the laser posture (x, y, θ):
-//   φ = θ + bearing, u = (cos φ, sin φ), p = (x, y)
-//   t = (offset − n·p) / (n·u)                the range along the beam to the line (sine law)
-//   kNone/kGate:  residual = r − t
-//   kCosine:      residual = (r − t)·(n·u) = n·(p + r·u) − offset, the measured point's signed
-//                 distance to the line, which stays finite at grazing incidence.
-//   Jacobians (u' = (−sin φ, cos φ)):
-//     cosine: ∂/∂(x, y) = n, ∂/∂θ = r·(n·u')
-//     plain:  ∂/∂(x, y) = n / (n·u), ∂/∂θ = (offset − n·p)·(n·u') / (n·u)²
-// Analytic: one beam's residual is evaluated thousands of times per second in a session.
-class BeamResidual : public ceres::SizedCostFunction<1, 3> {
- public:
-  BeamResidual(double bearing_rad, double range_m, const SurfaceLine& line, bool cosine)
-      : cos_bearing_(std::cos(bearing_rad)),
-        sin_bearing_(std::sin(bearing_rad)),
-        range_m_(range_m),
-        line_(line),
-        cosine_(cosine) {}
-
-  bool Evaluate(double const* const* parameters, double* residual,
-                double** jacobians) const override {
-    const double* pose = parameters[0];
-    // Every beam of a problem is evaluated at the same heading, one after the other: its cosine
-    // and sine are computed once, and u = (cos φ, sin φ), φ = θ + bearing, by the angle sum.
-    thread_local double heading = std::numeric_limits<double>::quiet_NaN();
-    thread_local double cos_heading = 1.0, sin_heading = 0.0;
-    if (!(pose[2] == heading)) {
-      heading = pose[2];
-      cos_heading = std::cos(heading);
-      sin_heading = std::sin(heading);
-    }
-    const double c = cos_heading * cos_bearing_ - sin_heading * sin_bearing_;
-    const double s = sin_heading * cos_bearing_ + cos_heading * sin_bearing_;
-    const Eigen::Vector2d& n = line_.normal;
-    const double nu = n.x() * c + n.y() * s;
-    const double nu_dot = -n.x() * s + n.y() * c;
-    const double np = n.x() * pose[0] + n.y() * pose[1];
-    if (cosine_) {
-      residual[0] = np + range_m_ * nu - line_.offset;
-      if (jacobians != nullptr && jacobians[0] != nullptr) {
-        jacobians[0][0] = n.x();
-        jacobians[0][1] = n.y();
-        jacobians[0][2] = range_m_ * nu_dot;
-      }
-      return true;
-    }
-    if (std::abs(nu) < 1e-12) return false;  // the beam runs along the line
-    const double along = line_.offset - np;
-    residual[0] = range_m_ - along / nu;
-    if (jacobians != nullptr && jacobians[0] != nullptr) {
-      jacobians[0][0] = n.x() / nu;
-      jacobians[0][1] = n.y() / nu;
-      jacobians[0][2] = along * nu_dot / (nu * nu);
-    }
-    return true;
-  }
-
- private:
-  double cos_bearing_;
-  double sin_bearing_;
-  double range_m_;
-  SurfaceLine line_;
-  bool cosine_;
-};
 
 ceres::LossFunction* MakeLoss(const LikelihoodDistanceOptions& distance) {
   // Ceres' losses act on s = residual²; with a = c they are the Likelihood Distance's kernels
@@ -169,9 +98,8 @@ ceres::Context* SharedContext() {
 }
 
 struct BuiltProblem {
-  // The residuals, owned here rather than by the problem: a few allocations per problem instead
-  // of one per beam (a deque never moves them). Declared first, destroyed last.
-  std::deque<BeamResidual> residuals;
+  // Owned here rather than by the problem; declared first, destroyed last.
+  std::unique_ptr<BeamsResidual> residual;
   std::unique_ptr<ceres::Problem> problem;
   int residual_count = 0;
   std::vector<double> ranges_used_m;
@@ -182,7 +110,6 @@ BuiltProblem BuildProblem(const MapView& map, const LaserScan& scan, const Pose2
                           const CeresRefinerOptions& options, double* parameters) {
   BuiltProblem built;
   ceres::Problem::Options problem_options;
-  problem_options.loss_function_ownership = ceres::TAKE_OWNERSHIP;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   // Every block has the same single, valid parameter block: the checks would find nothing.
   problem_options.disable_all_safety_checks = true;
@@ -225,15 +152,18 @@ BuiltProblem BuildProblem(const MapView& map, const LaserScan& scan, const Pose2
           paired[k] = 1;
         }
       });
-  ceres::LossFunction* loss = MakeLoss(scoring.distance);  // shared by every residual
+  std::vector<BeamTerm> beams;
   for (std::size_t k = 0; k < scan.size(); ++k) {
     if (!paired[k]) continue;
-    built.residuals.emplace_back(scan.layout.Bearing(k), scan.ranges_m[k], lines[k], cosine);
-    built.problem->AddResidualBlock(&built.residuals.back(), loss, parameters);
+    const double bearing = scan.layout.Bearing(k);
+    beams.push_back({std::cos(bearing), std::sin(bearing), scan.ranges_m[k], lines[k]});
     built.ranges_used_m.push_back(scan.ranges_m[k]);
-    ++built.residual_count;
   }
-  if (built.residual_count == 0) delete loss;  // the problem owns it only once it is used
+  built.residual_count = static_cast<int>(beams.size());
+  if (beams.empty()) return built;
+  built.residual = std::make_unique<BeamsResidual>(
+      std::move(beams), cosine, std::unique_ptr<ceres::LossFunction>(MakeLoss(scoring.distance)));
+  built.problem->AddResidualBlock(built.residual.get(), nullptr, parameters);
   return built;
 }
 

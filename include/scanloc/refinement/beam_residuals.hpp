@@ -1,0 +1,68 @@
+#pragma once
+// The refinement's residuals: each beam's range residual against the local line of the surface
+// it hits, all beams of a problem in one Ceres residual block under a per-beam robust kernel.
+// Internal to the refinement layer (its header needs Ceres); exposed for its tests.
+
+#include <ceres/cost_function.h>
+#include <ceres/loss_function.h>
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+namespace scanloc {
+
+// The local line of the surface a beam hits: n·q = offset, n a unit normal.
+struct SurfaceLine {
+  Eigen::Vector2d normal;
+  double offset = 0.0;
+};
+
+// One beam's residual against its surface line, for the laser posture (x, y, θ):
+//   φ = θ + bearing, u = (cos φ, sin φ), p = (x, y)
+//   t = (offset − n·p) / (n·u)                the range along the beam to the line (sine law)
+//   plain:   residual = r − t
+//   cosine:  residual = (r − t)·(n·u) = n·(p + r·u) − offset, the measured point's signed
+//            distance to the line, which stays finite at grazing incidence.
+//   Jacobians (u' = (−sin φ, cos φ)):
+//     cosine: ∂/∂(x, y) = n, ∂/∂θ = r·(n·u')
+//     plain:  ∂/∂(x, y) = n / (n·u), ∂/∂θ = (offset − n·p)·(n·u') / (n·u)²
+struct BeamTerm {
+  double cos_bearing = 1.0;
+  double sin_bearing = 0.0;
+  double range_m = 0.0;
+  SurfaceLine line;
+
+  // u from the heading's cosine and sine (computed once for all beams) by the angle sum.
+  // `jacobian` (3 values) may be null. False when a plain residual is undefined (the beam runs
+  // along the line).
+  bool Evaluate(const double* pose, double cos_heading, double sin_heading, bool cosine,
+                double& residual, double* jacobian) const;
+};
+
+// All beams of a problem in one residual block, each under its own robust kernel, with the same
+// cost, gradient and Gauss–Newton model as one block per beam with the kernel as Ceres' loss
+// function (Ceres' bookkeeping per block costs more than the residuals themselves). Per beam,
+// with s = e² and (ρ, ρ', ρ'') the kernel at s, Ceres' corrector (ceres/corrector.cc) scales
+// the residual and its Jacobian row by √ρ' when ρ'' ≤ 0 (Cauchy, Huber and Tukey always), else
+// by √ρ'/(1 − α) and √ρ'·(1 − α), α = 1 − √(1 + 2sρ''/ρ'). The cost, ½Σρ, exceeds half the
+// corrected residuals' squared norm by ½Σ(ρ − ẽ²), ≥ 0 for a concave kernel (ρ ≥ sρ'): one more
+// residual carries it with a zero Jacobian row, so it adds to the cost and leaves the model's
+// slope and curvature alone. Without a kernel the residuals are the plain ones.
+class BeamsResidual : public ceres::CostFunction {
+ public:
+  BeamsResidual(std::vector<BeamTerm> beams, bool cosine,
+                std::unique_ptr<ceres::LossFunction> kernel);
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override;
+
+  std::size_t beam_count() const { return beams_.size(); }
+
+ private:
+  std::vector<BeamTerm> beams_;
+  bool cosine_;
+  std::unique_ptr<ceres::LossFunction> kernel_;
+};
+
+}  // namespace scanloc

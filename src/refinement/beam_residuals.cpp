@@ -1,0 +1,81 @@
+#include "scanloc/refinement/beam_residuals.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace scanloc {
+
+bool BeamTerm::Evaluate(const double* pose, double cos_heading, double sin_heading, bool cosine,
+                        double& residual, double* jacobian) const {
+  const double c = cos_heading * cos_bearing - sin_heading * sin_bearing;
+  const double s = sin_heading * cos_bearing + cos_heading * sin_bearing;
+  const Eigen::Vector2d& n = line.normal;
+  const double nu = n.x() * c + n.y() * s;
+  const double nu_dot = -n.x() * s + n.y() * c;
+  const double np = n.x() * pose[0] + n.y() * pose[1];
+  if (cosine) {
+    residual = np + range_m * nu - line.offset;
+    if (jacobian != nullptr) {
+      jacobian[0] = n.x();
+      jacobian[1] = n.y();
+      jacobian[2] = range_m * nu_dot;
+    }
+    return true;
+  }
+  if (std::abs(nu) < 1e-12) return false;
+  const double along = line.offset - np;
+  residual = range_m - along / nu;
+  if (jacobian != nullptr) {
+    jacobian[0] = n.x() / nu;
+    jacobian[1] = n.y() / nu;
+    jacobian[2] = along * nu_dot / (nu * nu);
+  }
+  return true;
+}
+
+BeamsResidual::BeamsResidual(std::vector<BeamTerm> beams, bool cosine,
+                             std::unique_ptr<ceres::LossFunction> kernel)
+    : beams_(std::move(beams)), cosine_(cosine), kernel_(std::move(kernel)) {
+  set_num_residuals(static_cast<int>(beams_.size()) + (kernel_ ? 1 : 0));
+  mutable_parameter_block_sizes()->push_back(3);
+}
+
+bool BeamsResidual::Evaluate(double const* const* parameters, double* residuals,
+                             double** jacobians) const {
+  const double* pose = parameters[0];
+  const double cos_heading = std::cos(pose[2]), sin_heading = std::sin(pose[2]);
+  double* jacobian = jacobians != nullptr ? jacobians[0] : nullptr;
+  double excess = 0.0;  // Σ(ρ − ẽ²)
+  for (std::size_t i = 0; i < beams_.size(); ++i) {
+    double* row = jacobian != nullptr ? jacobian + 3 * i : nullptr;
+    double e = 0.0;
+    if (!beams_[i].Evaluate(pose, cos_heading, sin_heading, cosine_, e, row)) return false;
+    if (!kernel_) {
+      residuals[i] = e;
+      continue;
+    }
+    const double squared = e * e;
+    double rho[3];
+    kernel_->Evaluate(squared, rho);
+    const double sqrt_rho1 = std::sqrt(rho[1]);
+    double residual_scaling = sqrt_rho1, jacobian_scaling = sqrt_rho1;
+    if (squared != 0.0 && rho[2] > 0.0) {
+      const double alpha = 1.0 - std::sqrt(1.0 + 2.0 * squared * rho[2] / rho[1]);
+      residual_scaling = sqrt_rho1 / (1.0 - alpha);
+      jacobian_scaling = sqrt_rho1 * (1.0 - alpha);
+    }
+    residuals[i] = residual_scaling * e;
+    if (row != nullptr)
+      for (int j = 0; j < 3; ++j) row[j] *= jacobian_scaling;
+    excess += rho[0] - residuals[i] * residuals[i];
+  }
+  if (kernel_) {
+    const std::size_t last = beams_.size();
+    residuals[last] = std::sqrt(std::max(0.0, excess));
+    if (jacobian != nullptr)
+      for (int j = 0; j < 3; ++j) jacobian[3 * last + j] = 0.0;
+  }
+  return true;
+}
+
+}  // namespace scanloc
