@@ -88,8 +88,8 @@ Evaluation EvaluateProblem(ceres::Problem& problem) {
   Evaluation result;
   std::vector<double> gradient;
   ceres::CRSMatrix jacobian;
-  EXPECT_TRUE(problem.Evaluate(ceres::Problem::EvaluateOptions(), &result.cost, nullptr,
-                               &gradient, &jacobian));
+  EXPECT_TRUE(problem.Evaluate(ceres::Problem::EvaluateOptions(), &result.cost, nullptr, &gradient,
+                               &jacobian));
   result.gradient = Eigen::Vector3d(gradient[0], gradient[1], gradient[2]);
   result.information.setZero();
   for (int row = 0; row < jacobian.num_rows; ++row) {
@@ -107,7 +107,9 @@ struct Case {
   std::string name;
 };
 
-void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class BeamsResidualTest : public ::testing::TestWithParam<Case> {};
 
@@ -153,14 +155,13 @@ TEST_P(BeamsResidualTest, MatchesOneBlockPerBeamWithCeresLoss) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    KernelsAndWeightings, BeamsResidualTest,
-    ::testing::Values(Case{Kernel::kCauchy, true, "cauchy_cosine"},
-                      Case{Kernel::kCauchy, false, "cauchy_plain"},
-                      Case{Kernel::kHuber, true, "huber_cosine"},
-                      Case{Kernel::kTukey, true, "tukey_cosine"},
-                      Case{Kernel::kNone, true, "no_kernel_cosine"}),
-    [](const auto& test_info) { return test_info.param.name; });
+INSTANTIATE_TEST_SUITE_P(KernelsAndWeightings, BeamsResidualTest,
+                         ::testing::Values(Case{Kernel::kCauchy, true, "cauchy_cosine"},
+                                           Case{Kernel::kCauchy, false, "cauchy_plain"},
+                                           Case{Kernel::kHuber, true, "huber_cosine"},
+                                           Case{Kernel::kTukey, true, "tukey_cosine"},
+                                           Case{Kernel::kNone, true, "no_kernel_cosine"}),
+                         [](const auto& test_info) { return test_info.param.name; });
 
 TEST(BeamsResidual, CarriesTheKernelsExcessCostInOneMoreResidual) {
   std::vector<BeamTerm> beams(3);

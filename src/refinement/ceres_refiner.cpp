@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "scanloc/common/parallel_for.hpp"
-#include "scanloc/refinement/beam_residuals.hpp"
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/maps/point_map.hpp"
+#include "scanloc/refinement/beam_residuals.hpp"
 
 namespace scanloc {
 namespace {
