@@ -51,6 +51,22 @@ TEST_F(CarvingTest, WallsAndPointsNearTheReturnAreNeverCarved) {
   EXPECT_EQ(map_.live_size(), before);
 }
 
+TEST_F(CarvingTest, TheMarginGrowsWithTheRangeOfTheReturn) {
+  map_.InsertScan(scan_, centre_);
+  // 0.18 m in front of the east wall, whose return is 5 m away: seen through with 0.1 m + 1 % of
+  // the return (0.15 m), not with a fixed 0.2 m nor with 0.1 m + 5 % (0.35 m).
+  ASSERT_TRUE(map_.Insert(Eigen::Vector2d(9.82, 4.0), 0.05));
+  const std::size_t with_point = map_.live_size();
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(map_.CarveFreeSpace(scan_, centre_, 0.2, 0.0), 0u);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(map_.CarveFreeSpace(scan_, centre_, 0.1, 0.05), 0u);
+  EXPECT_EQ(map_.live_size(), with_point);
+  EXPECT_EQ(map_.CarveFreeSpace(scan_, centre_, 0.1, 0.01), 0u);  // one miss, one sample
+  EXPECT_EQ(map_.CarveFreeSpace(scan_, centre_, 0.1, 0.01), 1u);  // two misses: removed
+  EXPECT_EQ(map_.live_size(), with_point - 1);
+  EXPECT_THROW(map_.CarveFreeSpace(scan_, centre_, 0.1, 1.0), std::invalid_argument);
+  EXPECT_THROW(map_.CarveFreeSpace(scan_, centre_, 0.1, -0.01), std::invalid_argument);
+}
+
 TEST_F(CarvingTest, ACarvedCellTakesNewSamplesAsANewPoint) {
   map_.InsertScan(scan_, centre_);
   map_.Insert(Eigen::Vector2d(7.0, 4.0), 0.05);

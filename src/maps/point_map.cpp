@@ -236,9 +236,11 @@ std::size_t PointMap::InsertScan(const LaserScan& scan, const Pose2D& T_world_la
 }
 
 std::size_t PointMap::CarveFreeSpace(const LaserScan& scan, const Pose2D& T_world_laser,
-                                     double margin_m) {
+                                     double margin_m, double margin_per_m) {
   scan.CheckConsistent();
   if (!(margin_m >= 0.0)) throw std::invalid_argument("CarveFreeSpace: margin_m must be >= 0");
+  if (!(margin_per_m >= 0.0) || !(margin_per_m < 1.0))
+    throw std::invalid_argument("CarveFreeSpace: margin_per_m must be in [0, 1)");
   const std::size_t n = scan.size();
   double reach_m = 0.0;
   for (std::size_t k = 0; k < n; ++k)
@@ -265,7 +267,7 @@ std::size_t PointMap::CarveFreeSpace(const LaserScan& scan, const Pose2D& T_worl
         0.5 * (n - 1));
     if (!(beam >= 0.0) || beam > static_cast<double>(n - 1)) continue;
     const double hit = nearest[static_cast<std::size_t>(beam)];
-    if (hit < 0.0 || range >= hit - margin_m) continue;
+    if (hit < 0.0 || range >= hit - margin_m - margin_per_m * hit) continue;
     if (s.misses[index] < std::numeric_limits<std::uint16_t>::max()) ++s.misses[index];
     if (s.misses[index] <= s.samples[index]) continue;
     s.alive[index] = 0;

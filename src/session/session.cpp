@@ -29,6 +29,8 @@ void SessionOptions::Validate() const {
   require(localise_translation_m >= 0.0 && localise_rotation_rad >= 0.0,
           "localise thresholds must be >= 0");
   require(free_space_margin_m >= 0.0, "free_space_margin_m must be >= 0");
+  require(free_space_margin_per_m >= 0.0 && free_space_margin_per_m < 1.0,
+          "free_space_margin_per_m must be in [0, 1)");
   require(insert_translation_m >= 0.0 && insert_rotation_rad >= 0.0,
           "insert thresholds must be >= 0");
   require(std::isfinite(initial_pose.x_m) && std::isfinite(initial_pose.y_m) &&
@@ -186,7 +188,8 @@ IterationRecord Session::Process(const Iteration& iteration) {
     const Pose2D T_world_laser = mounting_.LaserPose(record.T_world_robot);
     if (options_.free_space_margin_m > 0.0)
       record.carved =
-          point_map_.CarveFreeSpace(iteration.scan, T_world_laser, options_.free_space_margin_m);
+          point_map_.CarveFreeSpace(iteration.scan, T_world_laser, options_.free_space_margin_m,
+                                    options_.free_space_margin_per_m);
     point_map_.InsertScan(iteration.scan, T_world_laser);  // (3.6)
     last_inserted_pose_ = record.T_world_robot;
     record.inserted = true;

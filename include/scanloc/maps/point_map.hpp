@@ -54,12 +54,13 @@ class PointMap {
   // Returns points added.
   std::size_t InsertScan(const LaserScan& scan, const Pose2D& T_world_laser);
   // Free-space carving: every point that the beams of this scan (taken from T_world_laser) saw
-  // through, lying more than margin_m in front of the return of its beam and of both neighbouring
-  // beams, gets a miss; a point seen through more often than it was seen (misses > samples) is
-  // removed: people, doors and other things that moved do not stay in the map to occlude it.
-  // Beams without an echo carve nothing (glass, black surfaces). Returns the points removed.
+  // through, lying more than margin_m + margin_per_m·r in front of the nearest return r of its
+  // beam and both neighbouring beams, gets a miss; a point seen through more often than it was
+  // seen (misses > samples) is removed: people, doors and other things that moved do not stay in
+  // the map to occlude it. Beams without an echo carve nothing (glass, black surfaces). Returns
+  // the points removed.
   std::size_t CarveFreeSpace(const LaserScan& scan, const Pose2D& T_world_laser,
-                             double margin_m = 0.2);
+                             double margin_m = 0.2, double margin_per_m = 0.0);
 
   // Slots: indices 0 … size()−1 address points, some of which may have been removed by carving
   // (alive(i) false): they are in no search result and no saved map.
