@@ -35,25 +35,26 @@ class SessionOnPublicLog : public testing::TemporaryDirTest {
   if (testing::DatasetsDir().empty()) \
   GTEST_SKIP() << "public logs not found: set SCANLOC_DATASETS (default ../shared/datasets)"
 
+// The bounds every prefix asserts: enough relations scored, a mean under `max_mean_m`, no
+// relation error of half a metre (the session never diverges) and a mean rotation under 1°.
+void ExpectAccurate(const RelationsEvaluation& e, std::size_t min_matched, double max_mean_m) {
+  EXPECT_GE(e.matched, min_matched);
+  EXPECT_LT(e.translation_m.mean, max_mean_m);
+  EXPECT_LT(e.translation_m.max, 0.5);
+  EXPECT_LT(e.rotation_deg.mean, 1.0);
+}
+
 // Measured 2026-11-22: 541 relations, 0.0161 ± 0.0122 m, max 0.180 m (raw odometry on the whole
 // log: 7.37 m).
 TEST_F(SessionOnPublicLog, IntelFirst3000ScansStayWithin25MillimetresOnAverage) {
   SKIP_WITHOUT_LOGS();
-  const RelationsEvaluation e = RunPrefix("intel", 3000);
-  EXPECT_GE(e.matched, 500u);
-  EXPECT_LT(e.translation_m.mean, 0.025);
-  EXPECT_LT(e.translation_m.max, 0.5);  // never diverges
-  EXPECT_LT(e.rotation_deg.mean, 1.0);
+  ExpectAccurate(RunPrefix("intel", 3000), 500, 0.025);
 }
 
 // Measured 2026-11-22: 404 relations, 0.0330 ± 0.0266 m, max 0.153 m.
 TEST_F(SessionOnPublicLog, AcesFirst2500ScansStayWithin45MillimetresOnAverage) {
   SKIP_WITHOUT_LOGS();
-  const RelationsEvaluation e = RunPrefix("aces", 2500);
-  EXPECT_GE(e.matched, 380u);
-  EXPECT_LT(e.translation_m.mean, 0.045);
-  EXPECT_LT(e.translation_m.max, 0.5);
-  EXPECT_LT(e.rotation_deg.mean, 1.0);
+  ExpectAccurate(RunPrefix("aces", 2500), 380, 0.045);
 }
 
 // Measured 2026-11-22: 573 relations, 0.0502 ± 0.0432 m, max 0.213 m (0.0515 m with the carving
@@ -61,11 +62,7 @@ TEST_F(SessionOnPublicLog, AcesFirst2500ScansStayWithin45MillimetresOnAverage) {
 // reversal repair are covered by no other guard.
 TEST_F(SessionOnPublicLog, Fr079First2000ScansStayWithin60MillimetresOnAverage) {
   SKIP_WITHOUT_LOGS();
-  const RelationsEvaluation e = RunPrefix("fr079", 2000);
-  EXPECT_GE(e.matched, 550u);
-  EXPECT_LT(e.translation_m.mean, 0.060);
-  EXPECT_LT(e.translation_m.max, 0.5);
-  EXPECT_LT(e.rotation_deg.mean, 1.0);
+  ExpectAccurate(RunPrefix("fr079", 2000), 550, 0.060);
 }
 
 }  // namespace
