@@ -39,7 +39,9 @@ std::int64_t CellIndex(double coordinate, double cell_size_m) {
 }
 
 std::int64_t CellKey(std::int64_t ix, std::int64_t iy) {
-  return (ix << 32) ^ (iy & 0xffffffffLL);
+  // Unsigned shift: the same bits as ix << 32, without shifting a negative number.
+  return static_cast<std::int64_t>((static_cast<std::uint64_t>(ix) << 32) ^
+                                   (static_cast<std::uint64_t>(iy) & 0xffffffffULL));
 }
 
 std::int64_t CellKey(const Eigen::Vector2d& p, double cell_size_m) {
@@ -300,17 +302,19 @@ void PointMap::RadiusSearch(const Eigen::Vector2d& centre, double radius_m,
   const double widened = radius_m + MaxIndexDisplacement();
   const double radius2 = radius_m * radius_m;
   const Storage& s = *storage_;
+  // Lists live point i if its mean lies within the radius.
+  const auto offer = [&](std::uint32_t i) {
+    if (!s.alive[i]) return;
+    const double d2 = (s.points[i] - centre).squaredNorm();
+    if (d2 < radius2) found.emplace_back(i, d2);
+  };
   const Eigen::Vector2d farthest =
       (s.bounds.max() - centre).cwiseAbs().cwiseMax((s.bounds.min() - centre).cwiseAbs());
   if (farthest.squaredNorm() < widened * widened) {
     // The tree would return every point (long-range simulated scans of a building-sized map):
     // the same set, in index order, without the walk.
     found.reserve(live_size());
-    for (std::size_t i = 0; i < s.points.size(); ++i) {
-      if (!s.alive[i]) continue;
-      const double d2 = (s.points[i] - centre).squaredNorm();
-      if (d2 < radius2) found.emplace_back(static_cast<std::uint32_t>(i), d2);
-    }
+    for (std::size_t i = 0; i < s.points.size(); ++i) offer(static_cast<std::uint32_t>(i));
     return;
   }
   // Cells keyed by first samples, which lie within `widened` of the centre for every mean
@@ -324,11 +328,7 @@ void PointMap::RadiusSearch(const Eigen::Vector2d& centre, double radius_m,
       for (std::int64_t iy = cell_y0; iy <= cell_y1; ++iy) {
         const auto cell = s.search_cells.find(CellKey(ix, iy));
         if (cell == s.search_cells.end()) continue;
-        for (const std::uint32_t i : cell->second) {
-          if (!s.alive[i]) continue;
-          const double d2 = (s.points[i] - centre).squaredNorm();
-          if (d2 < radius2) found.emplace_back(i, d2);
-        }
+        for (const std::uint32_t i : cell->second) offer(i);
       }
     return;
   }

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -111,7 +110,7 @@ BuiltProblem BuildProblem(const MapView& map, const LaserScan& scan, const Pose2
   BuiltProblem built;
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  // Every block has the same single, valid parameter block: the checks would find nothing.
+  // One residual block on one valid parameter block: the checks would find nothing.
   problem_options.disable_all_safety_checks = true;
   problem_options.context = SharedContext();
   built.problem = std::make_unique<ceres::Problem>(problem_options);

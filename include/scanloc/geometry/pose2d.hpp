@@ -7,6 +7,7 @@
 
 namespace scanloc {
 
+// NormalizeAngle for any input (std::remainder); NormalizeAngle calls it outside ±9 rad.
 double NormalizeAngleSlow(double angle_rad);
 
 // Wraps an angle to (-π, π]. Inline, with the common cases first: simulated scans wrap every map
