@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "scanloc/io/config.hpp"
+#include "scanloc/config/config.hpp"
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/maps/point_map.hpp"
 #include "scanloc/simulation/simulated_scan.hpp"

@@ -6,7 +6,7 @@
 
 #include "commands.hpp"
 #include "common_options.hpp"
-#include "scanloc/io/mode_comparison.hpp"
+#include "scanloc/evaluation/mode_comparison.hpp"
 
 namespace scanloc::app {
 namespace {

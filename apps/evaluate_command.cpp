@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
-#include "scanloc/io/relations_evaluation.hpp"
+#include "scanloc/evaluation/relations_evaluation.hpp"
 #include "scanloc/io/trajectory.hpp"
 
 namespace scanloc::app {

@@ -6,7 +6,7 @@
 
 #include "commands.hpp"
 #include "scanloc/io/scan_file.hpp"
-#include "scanloc/simulation/laser_simulator.hpp"
+#include "scanloc/worlds/laser_simulator.hpp"
 
 namespace scanloc::app {
 

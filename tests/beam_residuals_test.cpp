@@ -1,4 +1,4 @@
-#include "scanloc/refinement/beam_residuals.hpp"
+#include "refinement/beam_residuals.hpp"
 
 #include <ceres/ceres.h>
 #include <gtest/gtest.h>

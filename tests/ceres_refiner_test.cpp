@@ -6,7 +6,7 @@
 
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/maps/point_map.hpp"
-#include "scanloc/simulation/laser_simulator.hpp"
+#include "scanloc/worlds/laser_simulator.hpp"
 #include "test_support.hpp"
 
 namespace scanloc {

@@ -6,11 +6,11 @@
 #include <random>
 
 #include "environment_fixtures.hpp"
-#include "scanloc/io/mode_comparison.hpp"
+#include "scanloc/evaluation/mode_comparison.hpp"
 #include "scanloc/session/candidate_evaluation.hpp"
 #include "scanloc/session/candidate_refinement.hpp"
-#include "scanloc/simulation/environments.hpp"
-#include "scanloc/simulation/laser_simulator.hpp"
+#include "scanloc/worlds/environments.hpp"
+#include "scanloc/worlds/laser_simulator.hpp"
 
 namespace scanloc {
 namespace {

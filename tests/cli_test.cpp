@@ -16,7 +16,7 @@
 #include "scanloc/io/sequence_sources.hpp"
 #include "scanloc/io/trajectory.hpp"
 #include "scanloc/maps/point_map_io.hpp"
-#include "scanloc/simulation/laser_simulator.hpp"
+#include "scanloc/worlds/laser_simulator.hpp"
 #include "run_scanloc.hpp"
 #include "test_support.hpp"
 

@@ -1,6 +1,6 @@
 // Map modes compared on a sequence with ground truth: the library's runs and `scanloc compare`.
 
-#include "scanloc/io/mode_comparison.hpp"
+#include "scanloc/evaluation/mode_comparison.hpp"
 
 #include <gtest/gtest.h>
 

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "scanloc/maps/point_map.hpp"
-#include "scanloc/refinement/refinement.hpp"
+#include "scanloc/likelihood/posture_scoring.hpp"
 #include "test_support.hpp"
 
 namespace scanloc {

@@ -10,7 +10,7 @@
 
 #include "scanloc/io/sequence_sources.hpp"
 #include "scanloc/maps/line_map.hpp"
-#include "scanloc/simulation/laser_simulator.hpp"
+#include "scanloc/worlds/laser_simulator.hpp"
 
 namespace scanloc::testing {
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "run_scanloc.hpp"
-#include "scanloc/io/relations_evaluation.hpp"
+#include "scanloc/evaluation/relations_evaluation.hpp"
 #include "scanloc/io/trajectory.hpp"
 #include "test_support.hpp"
 

@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "scanloc/simulation/laser_simulator.hpp"
+#include "scanloc/worlds/laser_simulator.hpp"
 #include "test_support.hpp"
 
 namespace scanloc {

@@ -9,7 +9,7 @@
 
 #include "scanloc/common/atomic_file.hpp"
 #include "scanloc/io/sequence_sources.hpp"
-#include "scanloc/simulation/environment_simulation.hpp"
+#include "scanloc/worlds/environment_simulation.hpp"
 
 namespace scanloc {
 namespace {

@@ -1,4 +1,4 @@
-#include "scanloc/refinement/beam_residuals.hpp"
+#include "beam_residuals.hpp"
 
 #include <algorithm>
 #include <cmath>

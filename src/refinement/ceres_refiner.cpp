@@ -13,7 +13,7 @@
 #include "scanloc/common/parallel_for.hpp"
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/maps/point_map.hpp"
-#include "scanloc/refinement/beam_residuals.hpp"
+#include "beam_residuals.hpp"
 
 namespace scanloc {
 namespace {

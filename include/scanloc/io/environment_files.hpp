@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "scanloc/simulation/environments.hpp"
+#include "scanloc/worlds/environments.hpp"
 
 namespace scanloc {
 

@@ -1,4 +1,4 @@
-#include "scanloc/refinement/refinement.hpp"
+#include "scanloc/likelihood/posture_scoring.hpp"
 
 #include <algorithm>
 #include <cmath>

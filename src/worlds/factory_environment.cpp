@@ -3,7 +3,7 @@
 // of the walls, and leaves the gate in the east wall open. Most walls lie beyond the laser's
 // reliable range from anywhere on the floor.
 
-#include "scanloc/simulation/environments.hpp"
+#include "scanloc/worlds/environments.hpp"
 
 #include <array>
 

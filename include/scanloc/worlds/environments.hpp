@@ -11,8 +11,8 @@
 #include "scanloc/geometry/laser_scan.hpp"
 #include "scanloc/geometry/pose2d.hpp"
 #include "scanloc/maps/line_map.hpp"
-#include "scanloc/simulation/laser_simulator.hpp"
-#include "scanloc/simulation/robot_path.hpp"
+#include "scanloc/worlds/laser_simulator.hpp"
+#include "scanloc/worlds/robot_path.hpp"
 
 namespace scanloc {
 

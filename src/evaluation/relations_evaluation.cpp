@@ -1,4 +1,4 @@
-#include "scanloc/io/relations_evaluation.hpp"
+#include "scanloc/evaluation/relations_evaluation.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "scanloc/simulation/environments.hpp"
+#include "scanloc/worlds/environments.hpp"
 
 #include <stdexcept>
 

@@ -1,4 +1,4 @@
-#include "scanloc/io/mode_comparison.hpp"
+#include "scanloc/evaluation/mode_comparison.hpp"
 
 #include <algorithm>
 #include <chrono>

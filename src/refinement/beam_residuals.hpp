@@ -1,7 +1,8 @@
 #pragma once
 // The refinement's residuals: each beam's range residual against the local line of the surface
 // it hits, all beams of a problem in one Ceres residual block under a per-beam robust kernel.
-// Internal to the refinement layer (its header needs Ceres); exposed for its tests.
+// Private to the library (src/, not include/): Ceres stays a private dependency of scanloc, and
+// only the refinement layer and its tests see this header.
 
 #include <ceres/cost_function.h>
 #include <ceres/loss_function.h>

@@ -7,7 +7,7 @@
 
 #include "scanloc/geometry/laser_scan.hpp"
 #include "scanloc/geometry/pose2d.hpp"
-#include "scanloc/simulation/environments.hpp"
+#include "scanloc/worlds/environments.hpp"
 
 namespace scanloc {
 

@@ -1,4 +1,4 @@
-#include "scanloc/simulation/robot_path.hpp"
+#include "scanloc/worlds/robot_path.hpp"
 
 #include <cmath>
 #include <stdexcept>

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "scanloc/io/config.hpp"
+#include "scanloc/config/config.hpp"
 #include "scanloc/maps/line_map.hpp"
 
 namespace scanloc {

@@ -1,7 +1,7 @@
 // §3.4.1 The classroom: the map and clutter of datasets/classroom (classroom.lines, clutter.lines)
 // and a loop around the room's free floor.
 
-#include "scanloc/simulation/environments.hpp"
+#include "scanloc/worlds/environments.hpp"
 
 namespace scanloc {
 namespace {

@@ -1,4 +1,4 @@
-#include "scanloc/io/config.hpp"
+#include "scanloc/config/config.hpp"
 
 #include <algorithm>
 #include <fstream>

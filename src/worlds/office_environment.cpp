@@ -5,7 +5,7 @@
 // line drawn for them in the map hides that plane in the simulated scan (Trial c). Printers and
 // hardware stand along the north wall. Neither is in the map.
 
-#include "scanloc/simulation/environments.hpp"
+#include "scanloc/worlds/environments.hpp"
 
 namespace scanloc {
 namespace {

@@ -1,4 +1,4 @@
-#include "scanloc/simulation/environment_simulation.hpp"
+#include "scanloc/worlds/environment_simulation.hpp"
 
 #include <cmath>
 #include <random>

@@ -1,4 +1,4 @@
-#include "scanloc/simulation/laser_simulator.hpp"
+#include "scanloc/worlds/laser_simulator.hpp"
 
 #include <cmath>
 #include <stdexcept>
