@@ -8,7 +8,7 @@
 #include "scanloc/io/candidate_report.hpp"
 #include "scanloc/io/candidates_file.hpp"
 #include "scanloc/io/scan_file.hpp"
-#include "scanloc/session/candidate_refinement.hpp"
+#include "scanloc/session/localisation.hpp"
 
 namespace scanloc::app {
 
@@ -48,10 +48,11 @@ void RegisterRefineCommand(CLI::App& app) {
     refiner.method = ParseRefinementMethod(a->method);
     refiner.ceres.incidence = ParseIncidenceWeighting(a->incidence);
     refiner.error_descent.alpha_m = config.validation.alpha_m;
-    const auto result = RefineCandidates(maps.View(), scan, candidates, config.mounting,
-                                         config.scoring, config.validation, refiner);
+    const LocalisationResult result =
+        Localise(maps.View(), scan, candidates, config.mounting,
+                 {config.scoring, config.validation, refiner}, RefinePolicy::kAll);
     if (a->json) {
-      nlohmann::json out = ToJson(result);
+      nlohmann::json out = RefinedToJson(result);
       out["method"] = a->method;
       std::cout << out.dump(2) << '\n';
     } else {

@@ -9,7 +9,7 @@
 #include "scanloc/io/candidate_report.hpp"
 #include "scanloc/io/candidates_file.hpp"
 #include "scanloc/io/scan_file.hpp"
-#include "scanloc/session/candidate_evaluation.hpp"
+#include "scanloc/session/localisation.hpp"
 
 namespace scanloc::app {
 
@@ -40,10 +40,11 @@ void RegisterTestCommand(CLI::App& app) {
     const LoadedMaps maps = LoadMaps(arguments->map, config);
     const LaserScan scan = LoadScan(arguments->scan_path, arguments->scan_index);
     const auto candidates = ReadCandidatesFile(arguments->candidates_path);
-    const auto result = EvaluateCandidates(maps.View(), scan, candidates, config.mounting,
-                                           config.scoring, config.validation);
+    const LocalisationResult result =
+        Localise(maps.View(), scan, candidates, config.mounting,
+                 {config.scoring, config.validation, config.refiner}, RefinePolicy::kNone);
     if (arguments->json) {
-      nlohmann::json out = ToJson(result);
+      nlohmann::json out = EvaluatedToJson(result);
       out["config"] = ToJson(config);
       std::cout << out.dump(2) << '\n';
     } else {

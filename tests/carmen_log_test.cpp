@@ -414,7 +414,7 @@ Repairs CountRepairs(const std::string& path) {
     repairs.changed += a.odometry->x_m != b.odometry->x_m || a.odometry->y_m != b.odometry->y_m ||
                        a.odometry->yaw_rad != b.odometry->yaw_rad;
   }
-  repairs.reversed = repaired.reversed_increments();
+  repairs.reversed = repaired.repaired_odometry_increments();
   return repairs;
 }
 

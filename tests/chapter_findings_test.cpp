@@ -7,13 +7,27 @@
 
 #include "environment_fixtures.hpp"
 #include "scanloc/evaluation/mode_comparison.hpp"
-#include "scanloc/session/candidate_evaluation.hpp"
-#include "scanloc/session/candidate_refinement.hpp"
+#include "scanloc/session/localisation.hpp"
 #include "scanloc/worlds/environments.hpp"
 #include "scanloc/worlds/laser_simulator.hpp"
 
 namespace scanloc {
 namespace {
+
+// The Likelihood Test of the candidates as given (`scanloc test`).
+LocalisationResult Evaluate(const MapView& map, const LaserScan& scan,
+                            const std::vector<Candidate>& candidates, const LaserMounting& mounting,
+                            const ScoringOptions& scoring, const ValidationOptions& validation) {
+  return Localise(map, scan, candidates, mounting, {scoring, validation, {}}, RefinePolicy::kNone);
+}
+
+// Every candidate refined and re-validated (`scanloc refine`).
+LocalisationResult RefineAll(const MapView& map, const LaserScan& scan,
+                             const std::vector<Candidate>& candidates,
+                             const LaserMounting& mounting, const ScoringOptions& scoring,
+                             const ValidationOptions& validation) {
+  return Localise(map, scan, candidates, mounting, {scoring, validation, {}}, RefinePolicy::kAll);
+}
 
 using testing::LoadStoredSequence;
 using testing::ReadEnvironmentLines;
@@ -45,13 +59,13 @@ MirrorOutcome TestMirrors(const LineMap& map, const std::vector<LaserScan>& scan
                           const std::vector<Pose2D>& truth, const LaserMounting& mounting) {
   MirrorOutcome outcome;
   for (std::size_t i = 0; i < scans.size(); ++i) {
-    const auto result = EvaluateCandidates({&map, nullptr}, scans[i],
-                                           {{truth[i], "p0"}, {MirrorInClassroom(truth[i]), "p3"}},
-                                           mounting, {}, {});
-    const bool rejected = result.candidates[1].verdict != Verdict::kValid;
+    const auto result =
+        Evaluate({&map, nullptr}, scans[i], {{truth[i], "p0"}, {MirrorInClassroom(truth[i]), "p3"}},
+                 mounting, {}, {});
+    const bool rejected = result.evaluated[1].verdict != Verdict::kValid;
     const bool near = truth[i].Translation().norm() < 2.0;
     ++outcome.total;
-    outcome.mirror_costlier += result.candidates[1].cost > result.candidates[0].cost;
+    outcome.mirror_costlier += result.evaluated[1].cost > result.evaluated[0].cost;
     outcome.near += near;
     outcome.rejected_near += rejected && near;
     outcome.rejected_far += rejected && !near;
@@ -122,18 +136,17 @@ TEST_F(OfficeFinding, TheBlindsPullTheShiftedCandidateAheadUntilALineIsAddedForT
     const Pose2D truth = sequence_.truth[i];
     const std::vector<Candidate> candidates{{truth, "p0"}, {TowardTheWindows(truth, 0.25), "p2"}};
     const LaserScan& scan = sequence_.iterations[i].scan;
-    const auto without = EvaluateCandidates({&office_, nullptr}, scan, candidates,
-                                            sequence_.mounting, scoring_, validation_);
-    const auto with = EvaluateCandidates({&with_blinds_, nullptr}, scan, candidates,
-                                         sequence_.mounting, scoring_, validation_);
-    shifted_first_without += without.best == 1;
-    shifted_first_with += with.best == 1;
-    truth_valid_with += with.candidates[0].verdict == Verdict::kValid;
+    const auto without =
+        Evaluate({&office_, nullptr}, scan, candidates, sequence_.mounting, scoring_, validation_);
+    const auto with = Evaluate({&with_blinds_, nullptr}, scan, candidates, sequence_.mounting,
+                               scoring_, validation_);
+    shifted_first_without += without.best_evaluated == 1;
+    shifted_first_with += with.best_evaluated == 1;
+    truth_valid_with += with.evaluated[0].verdict == Verdict::kValid;
     if (i == 0) {  // Trial (b)'s posture: the blinds' pairs land in the last slot at p0
-      EXPECT_GT(without.candidates[0].test.expect_value_m,
-                2.0 * without.candidates[1].test.expect_value_m);
-      EXPECT_LT(with.candidates[0].test.expect_value_m,
-                0.5 * with.candidates[1].test.expect_value_m);
+      EXPECT_GT(without.evaluated[0].test.expect_value_m,
+                2.0 * without.evaluated[1].test.expect_value_m);
+      EXPECT_LT(with.evaluated[0].test.expect_value_m, 0.5 * with.evaluated[1].test.expect_value_m);
     }
   }
   EXPECT_GE(shifted_first_without, 0.9 * total) << "of " << total;  // measured: all 83
@@ -149,19 +162,18 @@ TEST_F(OfficeFinding, WithTheBlindsLineBothCandidatesConvergeToOnePosture) {
     const Pose2D p0{truth.x_m + 0.01, truth.y_m - 0.01, truth.yaw_rad + 0.005};
     const Pose2D p2{truth.x_m - 0.26, truth.y_m + 0.01, truth.yaw_rad + 0.004};
     const LaserScan& scan = sequence_.iterations[i].scan;
-    const auto with = RefineCandidates({&with_blinds_, nullptr}, scan, {{p0, "p0"}, {p2, "p2"}},
-                                       sequence_.mounting, scoring_, validation_, {});
-    const Pose2D apart =
-        Between(with.candidates[0].T_world_robot, with.candidates[1].T_world_robot);
-    const Pose2D error = Between(truth, with.candidates[0].T_world_robot);
+    const auto with = RefineAll({&with_blinds_, nullptr}, scan, {{p0, "p0"}, {p2, "p2"}},
+                                sequence_.mounting, scoring_, validation_);
+    const Pose2D apart = Between(with.refined[0].T_world_robot, with.refined[1].T_world_robot);
+    const Pose2D error = Between(truth, with.refined[0].T_world_robot);
     EXPECT_LT(std::hypot(apart.x_m, apart.y_m), 0.005);  // measured: under 1 mm
     EXPECT_LT(std::abs(apart.yaw_rad), 0.002);
     EXPECT_LT(std::hypot(error.x_m, error.y_m), 0.01);  // measured: under 3 mm
 
     // Without the line, p0 itself is pulled onto the blinds (Trial b: p0 moved 0.16 m).
-    const auto without = RefineCandidates({&office_, nullptr}, scan, {{p0, "p0"}, {p2, "p2"}},
-                                          sequence_.mounting, scoring_, validation_, {});
-    const Pose2D pulled = Between(truth, without.candidates[0].T_world_robot);
+    const auto without = RefineAll({&office_, nullptr}, scan, {{p0, "p0"}, {p2, "p2"}},
+                                   sequence_.mounting, scoring_, validation_);
+    const Pose2D pulled = Between(truth, without.refined[0].T_world_robot);
     EXPECT_GT(std::hypot(pulled.x_m, pulled.y_m), 0.15);  // measured: 0.22–0.24 m
   }
 }
@@ -199,18 +211,16 @@ TEST(FactoryFinding, MinMatchRatioPointThreeRejectsGoodPosturesThatPointTwoAccep
     // The true posture: a good posture by construction.
     const std::vector<Candidate> truth{{sequence.truth[i], "truth"}};
     const LaserScan& scan = sequence.iterations[i].scan;
-    const auto s =
-        EvaluateCandidates({&factory, nullptr}, scan, truth, sequence.mounting, {}, strict);
-    const auto r =
-        EvaluateCandidates({&factory, nullptr}, scan, truth, sequence.mounting, {}, relaxed);
-    good += s.candidates[0].test.expect_value_m < strict.max_expect_value_m;
-    valid_strict += s.best == 0;
-    valid_relaxed += r.best == 0;
-    if (s.best != 0 && r.best == 0) {
-      EXPECT_EQ(s.candidates[0].verdict, Verdict::kLowMatchRatio) << "iteration " << i;
+    const auto s = Evaluate({&factory, nullptr}, scan, truth, sequence.mounting, {}, strict);
+    const auto r = Evaluate({&factory, nullptr}, scan, truth, sequence.mounting, {}, relaxed);
+    good += s.evaluated[0].test.expect_value_m < strict.max_expect_value_m;
+    valid_strict += s.best_evaluated == 0;
+    valid_relaxed += r.best_evaluated == 0;
+    if (s.best_evaluated != 0 && r.best_evaluated == 0) {
+      EXPECT_EQ(s.evaluated[0].verdict, Verdict::kLowMatchRatio) << "iteration " << i;
     }
-    if (s.best == 0) {
-      EXPECT_EQ(r.best, 0) << "iteration " << i;
+    if (s.best_evaluated == 0) {
+      EXPECT_EQ(r.best_evaluated, 0) << "iteration " << i;
     }
   }
   // Every true posture fits the map closely (rule 2), but machinery and walls beyond the reliable

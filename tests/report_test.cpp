@@ -194,30 +194,40 @@ IterationRecord Localised(std::size_t index, bool valid, const std::string& labe
   r.timestamp_s = 10.0 + index;
   r.origin = "walk.seq.jsonl:" + std::to_string(index + 2);
   r.prediction = {1.0 + 0.1 * index, 2.0, 0.1};
-  CandidateEvaluation a;
+  RankedCandidate a;
   a.candidate = {r.prediction, label};
+  a.T_world_robot = r.prediction;
   a.T_world_laser = r.prediction;
   a.test = MakeTest({5, 9, 4, 2, 0, 0, 0, 0, 0, 3}, 30, 0.025);
   a.distance.expect_value_m = 0.02;
   a.cost = 0.04;
   a.verdict = valid ? Verdict::kValid : Verdict::kHighExpectValue;
   a.rank = valid ? 0 : -1;
-  CandidateEvaluation b = a;
+  RankedCandidate b = a;
   b.candidate = {Pose2D{1.0 + 0.1 * index, 2.0, 0.2}, "p1"};
+  b.T_world_robot = b.T_world_laser = b.candidate.T_world_robot;
   b.test = MakeTest({0, 1, 0, 0, 0, 0, 0, 0, 1, 6}, 30, 0.09);
   b.verdict = Verdict::kLowMatchRatio;
   b.rank = -1;
-  r.candidates.candidates = {a, b};
-  r.candidates.best = valid ? 0 : -1;
-  if (!valid) r.candidates.problems = {"no candidate passed the validation rules"};
-  r.chosen = 0;
+  LocalisationResult localisation;
+  localisation.evaluated = {a, b};
+  localisation.best_evaluated = valid ? 0 : -1;
+  if (!valid) localisation.problems = {"no candidate passed the validation rules"};
   RefinementResult refinement;
   refinement.T_world_laser = {r.prediction.x_m + 0.01, 2.0, 0.1};
   refinement.converged = true;
   refinement.iterations = 3;
   refinement.test_before = a.test;
   refinement.test_after = MakeTest({12, 6, 2, 0, 0, 0, 0, 0, 0, 1}, 30, 0.012);
-  r.refinement = refinement;
+  RankedCandidate refined = a;
+  refined.from = 0;
+  refined.refinement = refinement;
+  refined.T_world_robot = refined.T_world_laser = refinement.T_world_laser;
+  refined.test = refinement.test_after;
+  localisation.refined = {refined};
+  localisation.best_refined = valid ? 0 : -1;
+  localisation.kept = 0;
+  r.localisation = localisation;
   r.T_world_robot = valid ? refinement.T_world_laser : r.prediction;
   r.verdict = valid ? Verdict::kValid : Verdict::kHighExpectValue;
   r.validated = valid;
@@ -543,9 +553,13 @@ TEST_F(ReportTest, ReplayGivesEachSelectedIterationItsScanAndTheMapBeforeIt) {
   PointMap map(contents.config.point_map);
   std::vector<std::size_t> visited, map_sizes;
   const ScanReplayResult replay = ReplayScans(
-      contents.log_path, rows, {0, 5, 12, 23}, contents.config.mounting, map,
+      contents.log_path, rows, {0, 5, 12, 23}, contents.config.mounting,
+      contents.config.session.extension, map,
       [&](const IterationRow& row, const LaserScan& scan, const PointMap& before) {
         visited.push_back(row.index);
+        // The map rebuilt by ExtendMap is the session's own, point for point in number.
+        if (row.index > 0)
+          EXPECT_EQ(before.live_size(), rows[row.index - 1].map_points) << row.index;
         map_sizes.push_back(before.size());
         EXPECT_EQ(scan.size(), 720u);
         for (std::size_t i = 0; i < before.size(); ++i)

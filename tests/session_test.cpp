@@ -53,7 +53,7 @@ TEST(Session, TracksALoopWithoutAMapWithinTwoCentimetresAndFiveMilliradians) {
   const Sequence sequence = LoopAroundTheRoom(3);
   SessionOptions options;
   options.initial_pose = sequence.truth.front();
-  Session session(options, {}, {}, {}, {}, {}, PointMap{});
+  Session session(SessionConfig{options, {}}, {}, {}, PointMap{});
   double worst_m = 0.0, worst_rad = 0.0, worst_skipped_m = 0.0, worst_skipped_rad = 0.0;
   int validated = 0, localised = 0;
   for (std::size_t i = 0; i < sequence.iterations.size(); ++i) {
@@ -94,7 +94,7 @@ TEST(Session, OdometryAloneDriftsWhereTheSessionDoesNot) {
 
 TEST(Session, StationaryScansAreSkippedButRecorded) {
   const Sequence sequence = LoopAroundTheRoom(4);
-  Session session({}, {}, {}, {}, {}, {}, PointMap{});
+  Session session(SessionConfig{}, {}, {}, PointMap{});
   session.Process(sequence.iterations[0]);
   Iteration again = sequence.iterations[0];
   again.timestamp_s = 0.05;
@@ -106,7 +106,7 @@ TEST(Session, StationaryScansAreSkippedButRecorded) {
 
 TEST(Session, AllInvalidScanIsFlaggedAndDoesNotExtendTheMap) {
   const Sequence sequence = LoopAroundTheRoom(5);
-  Session session({}, {}, {}, {}, {}, {}, PointMap{});
+  Session session(SessionConfig{}, {}, {}, PointMap{});
   session.Process(sequence.iterations[0]);
   const std::size_t points = session.point_map().size();
   Iteration blind = sequence.iterations[10];
@@ -116,7 +116,8 @@ TEST(Session, AllInvalidScanIsFlaggedAndDoesNotExtendTheMap) {
   EXPECT_FALSE(r.inserted);
   EXPECT_EQ(r.verdict, Verdict::kNoValidPairs);
   EXPECT_EQ(session.point_map().size(), points);
-  EXPECT_FALSE(r.candidates.problems.empty());
+  ASSERT_TRUE(r.localisation.has_value());
+  EXPECT_FALSE(r.localisation->problems.empty());
 }
 
 TEST(Session, APersonWalkingAheadLeavesNoTraceInTheMap) {
@@ -130,7 +131,7 @@ TEST(Session, APersonWalkingAheadLeavesNoTraceInTheMap) {
   SessionOptions options;
   Pose2D truth{1.2, 3.5, 0.0};
   options.initial_pose = truth;
-  Session session(options, {}, {}, {}, {}, {}, PointMap{});
+  Session session(SessionConfig{options, {}}, {}, {}, PointMap{});
   Pose2D odometry;
   std::vector<Eigen::Vector2d> person_positions;
   for (int i = 0; i < 70; ++i) {
@@ -168,7 +169,7 @@ TEST(Session, AnUnvalidatedPostureIsTheRefinedBestGuessAndDoesNotExtendTheMap) {
   SessionOptions options;
   options.initial_pose = sequence.truth.front();
   options.max_expect_value_m = 1e-4;  // rule 2 can never pass
-  Session session(options, {}, {}, {}, {}, {}, PointMap{});
+  Session session(SessionConfig{options, {}}, {}, {}, PointMap{});
   session.Process(sequence.iterations[0]);
   const std::size_t points = session.point_map().live_size();
   for (std::size_t i = 1; i < 10; ++i) {
@@ -177,8 +178,8 @@ TEST(Session, AnUnvalidatedPostureIsTheRefinedBestGuessAndDoesNotExtendTheMap) {
     EXPECT_FALSE(r.validated);
     EXPECT_EQ(r.verdict, Verdict::kHighExpectValue);
     EXPECT_FALSE(r.inserted);
-    ASSERT_TRUE(r.refinement.has_value());
-    const Pose2D refined = r.refinement->T_world_laser;
+    ASSERT_NE(r.Kept(), nullptr);
+    const Pose2D refined = r.Kept()->T_world_laser;
     EXPECT_DOUBLE_EQ(r.T_world_robot.x_m, refined.x_m);  // mounting is the identity here
     EXPECT_DOUBLE_EQ(r.T_world_robot.yaw_rad, refined.yaw_rad);
     const Pose2D error = Between(sequence.truth[i], r.T_world_robot);
@@ -191,15 +192,18 @@ TEST(Session, EveryRefinedCandidateIsRecordedAndTheKeptOneIsAmongThem) {
   const Sequence sequence = LoopAroundTheRoom(7);
   SessionOptions options;
   options.initial_pose = sequence.truth.front();
-  Session session(options, {}, {}, {}, {}, {}, PointMap{});
+  Session session(SessionConfig{options, {}}, {}, {}, PointMap{});
   for (std::size_t i = 0; i < 12; ++i) {
     const IterationRecord r = session.Process(sequence.iterations[i]);
     if (r.skipped || r.first) continue;
-    ASSERT_FALSE(r.refined.empty());
-    EXPECT_LE(r.refined.size(), static_cast<std::size_t>(options.max_refined_candidates));
-    bool kept = false;
-    for (const auto& refined : r.refined) kept |= refined.candidate == r.chosen;
-    EXPECT_TRUE(kept);
+    ASSERT_TRUE(r.localisation.has_value());
+    const std::vector<RankedCandidate>& refined = r.localisation->refined;
+    ASSERT_FALSE(refined.empty());
+    EXPECT_LE(refined.size(), static_cast<std::size_t>(options.max_refined_candidates));
+    ASSERT_NE(r.Kept(), nullptr);
+    EXPECT_GE(r.localisation->kept, 0);
+    EXPECT_LT(r.localisation->kept, static_cast<int>(refined.size()));
+    EXPECT_EQ(r.T_world_robot.x_m, r.Kept()->T_world_robot.x_m);
   }
 }
 
@@ -209,7 +213,7 @@ TEST(SessionOptions, AbsurdValuesAreRefused) {
   EXPECT_THROW(options.Validate(), std::invalid_argument);
   options = {};
   options.heading_spread_rad = -1.0;
-  EXPECT_THROW(Session(options, {}, {}, {}, {}, {}, PointMap{}), std::invalid_argument);
+  EXPECT_THROW(Session(SessionConfig{options, {}}, {}, {}, PointMap{}), std::invalid_argument);
 }
 
 }  // namespace

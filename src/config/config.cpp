@@ -163,8 +163,8 @@ void ApplyJson(const json& root, Config& c) {
       .Field("insert_translation_m", c.session.insert_translation_m)
       .Field("insert_rotation_rad", c.session.insert_rotation_rad)
       .Field("insert_unvalidated", c.session.insert_unvalidated)
-      .Field("free_space_margin_m", c.session.free_space_margin_m)
-      .Field("free_space_margin_per_m", c.session.free_space_margin_per_m)
+      .Field("free_space_margin_m", c.session.extension.free_space_margin_m)
+      .Field("free_space_margin_per_m", c.session.extension.free_space_margin_per_m)
       .Field("initial_pose", initial)
       .RefuseUnknown();
   if (initial.size() != 3)
@@ -247,8 +247,8 @@ json ToJson(const Config& c) {
         {"insert_translation_m", c.session.insert_translation_m},
         {"insert_rotation_rad", c.session.insert_rotation_rad},
         {"insert_unvalidated", c.session.insert_unvalidated},
-        {"free_space_margin_m", c.session.free_space_margin_m},
-        {"free_space_margin_per_m", c.session.free_space_margin_per_m},
+        {"free_space_margin_m", c.session.extension.free_space_margin_m},
+        {"free_space_margin_per_m", c.session.extension.free_space_margin_per_m},
         {"initial_pose",
          {c.session.initial_pose.x_m, c.session.initial_pose.y_m,
           c.session.initial_pose.yaw_rad}}}},

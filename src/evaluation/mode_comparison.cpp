@@ -22,35 +22,34 @@ struct Accumulator {
   double time_s = 0.0;
 };
 
-// Localises one iteration each time against a line map that never changes. Session extends its
-// point map with every validated scan; here each iteration gets a fresh Session over the line map
-// alone, started at the prediction Session itself would make: the previous posture moved by the
-// odometry increment. The iteration is handed over without its odometry, so that the fresh
-// Session neither skips it nor takes the absolute odometry heading for a turn: every iteration is
-// localised, with the heading candidates (as Session does with the default
-// heading_candidates_min_turn_rad of 0).
+// Localises every iteration against a line map that never changes, from the prediction a session
+// would make (the previous posture moved by the odometry increment), with the heading candidates
+// at every scan: the session's localisation without its gate and without map extension.
 class FixedLineMapRun {
  public:
   FixedLineMapRun(const Config& config, LaserMounting mounting, const LineMap& line_map)
-      : config_(config), mounting_(mounting), line_map_(line_map) {}
+      : config_(config), mounting_(mounting), line_map_(line_map), no_points_(config.point_map) {}
 
   IterationRecord Process(const Iteration& iteration) {
-    Pose2D prediction = last_pose_ ? *last_pose_ : config_.session.initial_pose;
-    if (last_pose_ && last_odometry_ && iteration.odometry)
-      prediction = *last_pose_ * Between(*last_odometry_, *iteration.odometry);
-    SessionOptions options = config_.session;
-    options.initial_pose = prediction.Normalized();
-    Session session(options, config_.scoring, config_.validation, config_.refiner, mounting_,
-                    line_map_, PointMap(config_.point_map));
-    Iteration without_odometry = iteration;
-    without_odometry.odometry.reset();
-    IterationRecord record = session.Process(without_odometry);
+    IterationRecord record;
     record.index = count_++;
-    record.prediction = prediction;
-    // The map extension happened in the throw-away Session: not part of this mode.
-    record.total_s -= record.insert_s;
-    record.inserted = false;
-    record.map_points = 0;
+    record.timestamp_s = iteration.timestamp_s;
+    record.origin = iteration.origin;
+    record.prediction = last_pose_ ? *last_pose_ : config_.session.initial_pose;
+    if (last_pose_ && last_odometry_ && iteration.odometry)
+      record.prediction = *last_pose_ * Between(*last_odometry_, *iteration.odometry);
+    const std::vector<Candidate> candidates =
+        PredictionCandidates(record.prediction.Normalized(), iteration.external_candidates,
+                             /*turning=*/true, mounting_, config_.session);
+    LocalisationOptions options{config_.scoring, config_.validation, config_.refiner};
+    options.validation.max_expect_value_m = config_.session.max_expect_value_m;
+    record.localisation =
+        Localise({&line_map_, &no_points_}, iteration.scan, candidates, mounting_, options,
+                 RefinePolicy::kBestValid, config_.session.max_refined_candidates);
+    record.T_world_robot = record.Kept()->T_world_robot;
+    record.verdict = record.Kept()->verdict;
+    record.validated = record.localisation->validated();
+    record.total_s = record.localisation->evaluate_s + record.localisation->refine_s;
     last_pose_ = record.T_world_robot;
     if (iteration.odometry) last_odometry_ = iteration.odometry;
     return record;
@@ -60,6 +59,7 @@ class FixedLineMapRun {
   const Config& config_;
   LaserMounting mounting_;
   const LineMap& line_map_;
+  const PointMap no_points_;  // the session's point map, which this mode never extends
   std::size_t count_ = 0;
   std::optional<Pose2D> last_pose_, last_odometry_;
 };
@@ -108,7 +108,8 @@ ModeResult RunMode(MapMode mode, const std::string& sequence_path, const LineMap
     fixed = std::make_unique<FixedLineMapRun>(run_config, source.mounting(), line_map);
   else
     session = std::make_unique<Session>(
-        run_config.session, run_config.scoring, run_config.validation, run_config.refiner,
+        SessionConfig{run_config.session,
+                      {run_config.scoring, run_config.validation, run_config.refiner}},
         source.mounting(), mode == MapMode::kBoth ? line_map : LineMap{},
         PointMap(run_config.point_map));
 
@@ -120,10 +121,10 @@ ModeResult RunMode(MapMode mode, const std::string& sequence_path, const LineMap
     ++result.iterations;
     sum.time_s += record.total_s;
     result.map_points = record.map_points;
-    if (record.refinement && !record.skipped) {
+    if (record.Kept() && !record.skipped) {
       ++result.localised;
       result.validated += record.validated;
-      const LikelihoodTestResult& test = record.refinement->test_after;
+      const LikelihoodTestResult& test = record.Kept()->test;
       sum.match_pairs += test.match_pairs;
       sum.valid_pairs += test.valid_pairs;
       sum.match_ratio += test.MatchRatio();

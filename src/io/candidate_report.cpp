@@ -7,13 +7,22 @@
 
 namespace scanloc {
 
-void PrintCandidateTable(std::ostream& out, const CandidateEvaluationResult& result) {
+namespace {
+
+// The best one's label, or null.
+nlohmann::json BestLabel(const std::vector<RankedCandidate>& ranked, int best) {
+  return best >= 0 ? nlohmann::json(ranked[best].candidate.label) : nlohmann::json(nullptr);
+}
+
+}  // namespace
+
+void PrintCandidateTable(std::ostream& out, const LocalisationResult& result) {
   char line[256];
   std::snprintf(line, sizeof line, "%-8s %9s %9s %10s %6s %6s %8s %11s %8s %8s %-5s %s\n",
                 "posture", "x [m]", "y [m]", "θ [rad]", "MP", "NVP", "EV [m]", "√Disp [m]", "cost",
                 "LD-EV", "valid", "reason");
   out << line;
-  for (const auto& c : result.candidates) {
+  for (const auto& c : result.evaluated) {
     const Pose2D& p = c.candidate.T_world_robot;
     std::snprintf(line, sizeof line,
                   "%-8s %9.4f %9.4f %9.5f %6d %6d %8.5f %9.5f %8.5f %8.5f %-5s %s\n",
@@ -24,21 +33,22 @@ void PrintCandidateTable(std::ostream& out, const CandidateEvaluationResult& res
                                                : ToString(c.verdict));
     out << line;
   }
-  if (result.best >= 0) out << "best: " << result.candidates[result.best].candidate.label << '\n';
+  if (result.best_evaluated >= 0)
+    out << "best: " << result.evaluated[result.best_evaluated].candidate.label << '\n';
   for (const auto& problem : result.problems) out << "problem: " << problem << '\n';
 }
 
-void PrintRefinementTable(std::ostream& out, const CandidateRefinementResult& result) {
+void PrintRefinementTable(std::ostream& out, const LocalisationResult& result) {
   char line[320];
   std::snprintf(line, sizeof line,
                 "%-8s %-6s %9s %9s %10s %27s %13s %19s %11s %8s %6s %8s %-5s %s\n", "posture",
                 "stage", "x [m]", "y [m]", "θ [rad]", "correction [mm, mm, mrad]", "MP", "EV [m]",
                 "√Disp [m]", "LD-EV", "iters", "time[ms]", "valid", "reason");
   out << line;
-  for (const auto& c : result.candidates) {
+  for (const auto& c : result.refined) {
     const Pose2D& a = c.candidate.T_world_robot;
     const Pose2D& b = c.T_world_robot;
-    const RefinementResult& r = c.refinement;
+    const RefinementResult& r = *c.refinement;
     std::snprintf(line, sizeof line, "%-8s %-6s %9.4f %9.4f %9.5f %26s %6d %8.5f %9.5f %8.5f\n",
                   c.candidate.label.c_str(), "before", a.x_m, a.y_m, a.yaw_rad, "",
                   r.test_before.match_pairs, r.test_before.expect_value_m,
@@ -59,8 +69,8 @@ void PrintRefinementTable(std::ostream& out, const CandidateRefinementResult& re
                   reason.c_str());
     out << line;
   }
-  if (result.best >= 0)
-    out << "best: " << result.candidates[result.best].candidate.label << '\n';
+  if (result.best_refined >= 0)
+    out << "best: " << result.refined[result.best_refined].candidate.label << '\n';
   else
     out << "problem: no refined candidate passed the validation rules\n";
 }
@@ -104,9 +114,9 @@ nlohmann::json ToJson(const RefinementResult& r) {
   return out;
 }
 
-nlohmann::json ToJson(const CandidateRefinementResult& result) {
+nlohmann::json RefinedToJson(const LocalisationResult& result) {
   nlohmann::json candidates = nlohmann::json::array();
-  for (const auto& c : result.candidates) {
+  for (const auto& c : result.refined) {
     const Pose2D& a = c.candidate.T_world_robot;
     const Pose2D& b = c.T_world_robot;
     candidates.push_back({{"label", c.candidate.label},
@@ -115,20 +125,18 @@ nlohmann::json ToJson(const CandidateRefinementResult& result) {
                           {"correction_mm_mm_mrad",
                            {1e3 * (b.x_m - a.x_m), 1e3 * (b.y_m - a.y_m),
                             1e3 * NormalizeAngle(b.yaw_rad - a.yaw_rad)}},
-                          {"refinement", ToJson(c.refinement)},
+                          {"refinement", ToJson(*c.refinement)},
                           {"cost", c.cost},
                           {"valid", c.verdict == Verdict::kValid},
                           {"reason", ToString(c.verdict)},
                           {"rank", c.rank}});
   }
-  return {{"candidates", candidates},
-          {"best", result.best >= 0 ? nlohmann::json(result.candidates[result.best].candidate.label)
-                                    : nlohmann::json(nullptr)}};
+  return {{"candidates", candidates}, {"best", BestLabel(result.refined, result.best_refined)}};
 }
 
-nlohmann::json ToJson(const CandidateEvaluationResult& result) {
+nlohmann::json EvaluatedToJson(const LocalisationResult& result) {
   nlohmann::json candidates = nlohmann::json::array();
-  for (const auto& c : result.candidates)
+  for (const auto& c : result.evaluated)
     candidates.push_back({{"label", c.candidate.label},
                           {"T_world_robot", ToJson(c.candidate.T_world_robot)},
                           {"T_world_laser", ToJson(c.T_world_laser)},
@@ -139,8 +147,7 @@ nlohmann::json ToJson(const CandidateEvaluationResult& result) {
                           {"reason", ToString(c.verdict)},
                           {"rank", c.rank}});
   return {{"candidates", candidates},
-          {"best", result.best >= 0 ? nlohmann::json(result.candidates[result.best].candidate.label)
-                                    : nlohmann::json(nullptr)},
+          {"best", BestLabel(result.evaluated, result.best_evaluated)},
           {"problems", result.problems}};
 }
 

@@ -10,7 +10,29 @@
 
 namespace scanloc {
 
+namespace {
+
+// The refinements of one localisation, each re-validated, as the report lists them.
+nlohmann::json RefinedCandidatesJson(const LocalisationResult& localisation) {
+  nlohmann::json refined = nlohmann::json::array();
+  for (const RankedCandidate& candidate : localisation.refined)
+    refined.push_back({{"candidate", candidate.candidate.label},
+                       {"T_world_laser", ToJson(candidate.T_world_laser)},
+                       {"cost", candidate.cost},
+                       {"rank", candidate.rank},
+                       {"valid", candidate.verdict == Verdict::kValid},
+                       {"reason", ToString(candidate.verdict)},
+                       {"expect_value_m", candidate.test.expect_value_m},
+                       {"match_ratio", candidate.test.MatchRatio()}});
+  return refined;
+}
+
+}  // namespace
+
 nlohmann::json ToJson(const IterationRecord& r) {
+  const LocalisationResult* localisation = r.localisation ? &*r.localisation : nullptr;
+  const double evaluate_s = localisation ? localisation->evaluate_s : 0.0;
+  const double refine_s = localisation ? localisation->refine_s : 0.0;
   nlohmann::json out = {{"index", r.index},
                         {"timestamp_s", r.timestamp_s},
                         {"origin", r.origin},
@@ -24,31 +46,19 @@ nlohmann::json ToJson(const IterationRecord& r) {
                         {"carved", r.carved},
                         {"map_points", r.map_points},
                         {"timings_ms",
-                         {{"evaluate", 1e3 * r.evaluate_s},
-                          {"refine", 1e3 * r.refine_s},
+                         {{"evaluate", 1e3 * evaluate_s},
+                          {"refine", 1e3 * refine_s},
                           {"insert", 1e3 * r.insert_s},
                           {"total", 1e3 * r.total_s}}}};
-  if (!r.candidates.candidates.empty()) {
-    out["candidates"] = ToJson(r.candidates)["candidates"];
-    out["chosen"] = r.chosen >= 0
-                        ? nlohmann::json(r.candidates.candidates[r.chosen].candidate.label)
-                        : nlohmann::json(nullptr);
-    out["problems"] = r.candidates.problems;
+  const RankedCandidate* kept = r.Kept();
+  if (localisation && !localisation->evaluated.empty()) {
+    out["candidates"] = EvaluatedToJson(*localisation)["candidates"];
+    out["chosen"] = kept ? nlohmann::json(kept->candidate.label) : nlohmann::json(nullptr);
+    out["problems"] = localisation->problems;
   }
-  if (r.refinement) {
-    out["refinement"] = ToJson(*r.refinement);
-    nlohmann::json refined = nlohmann::json::array();
-    for (const auto& candidate : r.refined)
-      refined.push_back(
-          {{"candidate", r.candidates.candidates[candidate.candidate].candidate.label},
-           {"T_world_laser", ToJson(candidate.refinement.T_world_laser)},
-           {"cost", candidate.cost},
-           {"rank", candidate.rank},
-           {"valid", candidate.verdict == Verdict::kValid},
-           {"reason", ToString(candidate.verdict)},
-           {"expect_value_m", candidate.refinement.test_after.expect_value_m},
-           {"match_ratio", candidate.refinement.test_after.MatchRatio()}});
-    out["refined_candidates"] = refined;
+  if (kept) {
+    out["refinement"] = ToJson(*kept->refinement);
+    out["refined_candidates"] = RefinedCandidatesJson(*localisation);
     const Pose2D correction = Between(r.prediction, r.T_world_robot);
     out["correction_from_prediction_mm_mm_mrad"] = {1e3 * correction.x_m, 1e3 * correction.y_m,
                                                     1e3 * correction.yaw_rad};

@@ -178,7 +178,7 @@ std::string RenderRunReport(const RunContents& run, const ReportOptions& options
       }
     }
     const ScanReplayResult replay = ReplayScans(
-        run.log_path, rows, selection.indices, mounting, map,
+        run.log_path, rows, selection.indices, mounting, run.config.session.extension, map,
         [&](const IterationRow& row, const LaserScan& scan, const PointMap& map_before) {
           // The session's own count after the previous iteration, to compare.
           std::string note =

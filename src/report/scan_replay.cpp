@@ -19,8 +19,8 @@ std::string BaseOrigin(const std::string& origin) {
 
 ScanReplayResult ReplayScans(const std::string& log_path, const std::vector<IterationRow>& rows,
                              const std::vector<std::size_t>& selected,
-                             const LaserMounting& mounting, PointMap& map,
-                             const ScanVisitor& visit) {
+                             const LaserMounting& mounting, const MapExtensionOptions& extension,
+                             PointMap& map, const ScanVisitor& visit) {
   ScanReplayResult result;
   const std::set<std::size_t> wanted(selected.begin(), selected.end());
   if (wanted.empty() || rows.empty()) return result;
@@ -60,7 +60,8 @@ ScanReplayResult ReplayScans(const std::string& log_path, const std::vector<Iter
       visit(row, iteration.scan, map);
       ++result.scans_visited;
     }
-    if (row.inserted) map.InsertScan(iteration.scan, mounting.LaserPose(row.T_world_robot));
+    if (row.inserted)
+      ExtendMap(map, iteration.scan, mounting.LaserPose(row.T_world_robot), extension);
   }
   return result;
 }

@@ -4,22 +4,25 @@
 #include <iosfwd>
 #include <nlohmann/json_fwd.hpp>
 
-#include "scanloc/session/candidate_evaluation.hpp"
-#include "scanloc/session/candidate_refinement.hpp"
+#include "scanloc/session/localisation.hpp"
 
 namespace scanloc {
 
 // One row per candidate: x, y, θ, MP, NVP, EV, √Disp, cost, Likelihood Distance EV, valid, reason.
-void PrintCandidateTable(std::ostream& out, const CandidateEvaluationResult& result);
+// The candidates as given (result.evaluated), with the best and the problems.
+void PrintCandidateTable(std::ostream& out, const LocalisationResult& result);
 
 // Before and after refinement, with the correction in mm and mrad (Tables 2, 5, 6 and 8).
-void PrintRefinementTable(std::ostream& out, const CandidateRefinementResult& result);
+// The refinements (result.refined).
+void PrintRefinementTable(std::ostream& out, const LocalisationResult& result);
 
 nlohmann::json ToJson(const LikelihoodTestResult& test);
 nlohmann::json ToJson(const RefinementResult& refinement);
-nlohmann::json ToJson(const CandidateRefinementResult& result);
+// {"candidates": the refinements, each before and after, "best"}.
+nlohmann::json RefinedToJson(const LocalisationResult& result);
 nlohmann::json ToJson(const LikelihoodDistanceResult& distance);
 nlohmann::json ToJson(const Pose2D& pose);
-nlohmann::json ToJson(const CandidateEvaluationResult& result);
+// {"candidates": the candidates as given with their tests, "best", "problems"}.
+nlohmann::json EvaluatedToJson(const LocalisationResult& result);
 
 }  // namespace scanloc

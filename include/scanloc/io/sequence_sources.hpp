@@ -30,9 +30,9 @@ class CarmenIterationSource : public IterationSource {
   explicit CarmenIterationSource(const std::string& path, CarmenOptions options = {});
   bool Next(Iteration& iteration) override;
   LaserMounting mounting() const override { return reader_.mounting(); }
-  double Progress() const { return reader_.Progress(); }
+  double Progress() const override { return reader_.Progress(); }
   // Odometry increments reversed so far (0 when the repair is off).
-  std::size_t reversed_increments() const { return reversal_.repaired(); }
+  std::size_t repaired_odometry_increments() const override { return reversal_.repaired(); }
 
  private:
   std::string path_;
@@ -49,7 +49,7 @@ class SequenceFileSource : public IterationSource {
   LaserMounting mounting() const override { return mounting_; }
   // The ground-truth posture of the last iteration returned, when the sequence has one.
   const std::optional<Pose2D>& truth() const { return truth_; }
-  double Progress() const;
+  double Progress() const override;
 
  private:
   struct Impl;

@@ -52,18 +52,4 @@ bool Preferred(const CandidateAssessment& a, const CandidateAssessment& b,
 CandidateRanking RankCandidates(const std::vector<LikelihoodTestResult>& tests,
                                 const ValidationOptions& options = {});
 
-// Ranks `tests` and copies each candidate's cost, verdict and rank onto records[i] (any type with
-// fields of those names, one record per test); returns the index of the best, or -1.
-template <class Record>
-int RankInto(const std::vector<LikelihoodTestResult>& tests, const ValidationOptions& options,
-             std::vector<Record>& records) {
-  const CandidateRanking ranking = RankCandidates(tests, options);
-  for (std::size_t i = 0; i < records.size() && i < ranking.candidates.size(); ++i) {
-    records[i].cost = ranking.candidates[i].cost;
-    records[i].verdict = ranking.candidates[i].verdict;
-    records[i].rank = ranking.candidates[i].rank;
-  }
-  return ranking.best;
-}
-
 }  // namespace scanloc

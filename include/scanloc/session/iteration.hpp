@@ -26,6 +26,11 @@ class IterationSource {
   virtual bool Next(Iteration& iteration) = 0;
   // The laser's mounting on the robot as the source knows it.
   virtual LaserMounting mounting() const = 0;
+  // The fraction of the input read so far, in [0, 1]; 0 when unknown.
+  virtual double Progress() const { return 0.0; }
+  // Odometry increments the source repaired (CARMEN: moving forward while ODOM reported a
+  // negative velocity); 0 for sources that repair nothing.
+  virtual std::size_t repaired_odometry_increments() const { return 0; }
 };
 
 }  // namespace scanloc

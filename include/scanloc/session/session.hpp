@@ -1,7 +1,8 @@
 #pragma once
-// A localisation and mapping session: each iteration is localised against the map built so far
-// (candidates from the odometry prediction across the heading uncertainty, Likelihood Test,
-// Ceres refinement, validation by the rules), and a validated scan extends the point map (3.6).
+// A localisation and mapping session, the chapter's loop: each iteration's posture is predicted
+// from the odometry, gated (a robot that has not moved is not localised again), localised against
+// the map built so far from candidates across the heading uncertainty (Localise), decided, and a
+// validated scan extends the point map (ExtendMap, (3.6)).
 
 #include <cmath>
 #include <memory>
@@ -11,9 +12,9 @@
 #include "scanloc/likelihood/candidate_ranking.hpp"
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/maps/point_map.hpp"
-#include "scanloc/refinement/refiner.hpp"
-#include "scanloc/session/candidate_evaluation.hpp"
 #include "scanloc/session/iteration.hpp"
+#include "scanloc/session/localisation.hpp"
+#include "scanloc/session/map_extension.hpp"
 
 namespace scanloc {
 
@@ -41,15 +42,10 @@ struct SessionOptions {
   // did (metres, radians).
   double insert_translation_m = 0.1;
   double insert_rotation_rad = 0.087;
-  // Before a scan extends the map, its beams carve the free space they crossed: map points seen
-  // through more often than seen are removed (people, opened doors, and the copy of a wall that
-  // an earlier, slightly drifted pass laid 0.1–0.2 m in front of it). 0 disables; otherwise a
-  // point counts as seen through when it lies more than free_space_margin_m +
-  // free_space_margin_per_m·r in front of the return r: the end points' uncertainty grows with
-  // the range (0.5° of heading is 9 cm at 10 m). Chosen on the robustness harness
-  // (docs/BENCHMARKS.md): 0.1 m + 1 % carves the double walls that a fixed 0.2 m kept.
-  double free_space_margin_m = 0.1;
-  double free_space_margin_per_m = 0.01;
+  // Before a scan extends the map, its beams carve the free space they crossed. Chosen on the
+  // robustness harness (docs/BENCHMARKS.md): 0.1 m + 1 % carves the double walls that a fixed
+  // 0.2 m kept.
+  MapExtensionOptions extension;
   bool insert_unvalidated =
       false;            // let non-validated scans extend the map (off: they are flagged)
   Pose2D initial_pose;  // T_world_robot of the first iteration (§3.2.2: by convention)
@@ -64,32 +60,39 @@ struct IterationRecord {
   bool skipped = false;  // not localised: the robot had not moved enough
   bool first = false;    // the first iteration of a session without a prior map
   Pose2D prediction;     // odometry prediction, T_world_robot
-  CandidateEvaluationResult candidates;
-  int chosen = -1;                             // the candidate whose refined posture was kept
-  std::optional<RefinementResult> refinement;  // the chosen candidate's
-  // Every refined candidate (index into candidates) with its refinement and verdict after it.
-  struct Refined {
-    int candidate = -1;
-    RefinementResult refinement;
-    double cost = 0.0;  // (3.11) after refinement
-    Verdict verdict = Verdict::kValid;
-    int rank = -1;
-  };
-  std::vector<Refined> refined;
+  // Every candidate and refinement, when the scan was localised.
+  std::optional<LocalisationResult> localisation;
   Pose2D T_world_robot;               // the posture kept for this scan
-  Verdict verdict = Verdict::kValid;  // rules 1–2 on the refined posture
+  Verdict verdict = Verdict::kValid;  // the rules on the kept posture
   bool validated = false;
   bool inserted = false;       // the scan extended the map
   std::size_t carved = 0;      // map points removed by this scan's free space
   std::size_t map_points = 0;  // after this iteration
-  double evaluate_s = 0.0, refine_s = 0.0, insert_s = 0.0, total_s = 0.0;
+  double insert_s = 0.0, total_s = 0.0;
+
+  // The refinement kept, when the scan was localised.
+  const RankedCandidate* Kept() const { return localisation ? localisation->Kept() : nullptr; }
+};
+
+// The candidates a session tries: the prediction, turned about the laser by every multiple of
+// options.heading_step_rad up to ±options.heading_spread_rad when `turning`, then the external
+// ones (labels "odometry", "odometry+5deg", …, "external0", …).
+std::vector<Candidate> PredictionCandidates(const Pose2D& prediction,
+                                            const std::vector<Pose2D>& external, bool turning,
+                                            const LaserMounting& mounting,
+                                            const SessionOptions& options);
+
+// Everything a session runs with.
+struct SessionConfig {
+  SessionOptions session;
+  LocalisationOptions localisation;
 };
 
 class Session {
  public:
   // `line_map` (may be empty) stays fixed; `point_map` is extended by the session.
-  Session(SessionOptions options, ScoringOptions scoring, ValidationOptions validation,
-          RefinerOptions refiner, LaserMounting mounting, LineMap line_map, PointMap point_map);
+  Session(const SessionConfig& config, LaserMounting mounting, LineMap line_map,
+          PointMap point_map);
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
 
@@ -100,16 +103,15 @@ class Session {
   std::size_t iterations() const { return count_; }
 
  private:
-  std::vector<Candidate> MakeCandidates(const Pose2D& prediction, const Iteration& iteration,
-                                        bool turning) const;
-  std::vector<int> CandidatesToRefine(const CandidateEvaluationResult& evaluated) const;
-  bool MovedMoreThan(const Pose2D& from, const Pose2D& to, double translation_m,
-                     double rotation_rad) const;
+  MapView View() const;
+  Pose2D Predict(const Iteration& iteration) const;
+  bool ShouldLocalise(const Iteration& iteration) const;
+  std::vector<Candidate> MakeCandidates(const Pose2D& prediction, const Iteration& iteration) const;
+  void LocaliseInto(IterationRecord& record, const Iteration& iteration);
+  void MaybeExtend(IterationRecord& record, const LaserScan& scan);
 
   SessionOptions options_;
-  ScoringOptions scoring_;
-  ValidationOptions validation_;
-  RefinerOptions refiner_;
+  LocalisationOptions localisation_;
   LaserMounting mounting_;
   LineMap line_map_;
   PointMap point_map_;

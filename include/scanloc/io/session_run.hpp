@@ -1,0 +1,58 @@
+#pragma once
+// A whole session over a recorded sequence, into a run folder: the loop, what it counts, the
+// operator's progress line, and the summary. An error mid-run (a malformed line at scan 103, a
+// truncated file) ends the loop but not the run: what was done is still written, and the summary
+// says the run failed and why.
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+
+#include "scanloc/io/run_folder.hpp"
+#include "scanloc/session/iteration.hpp"
+#include "scanloc/session/session.hpp"
+
+namespace scanloc {
+
+struct SessionRunOptions {
+  std::size_t max_scans = 0;                // stop after this many scans (0: all)
+  bool progress = true;                     // a progress line on stderr every 2 s
+  const std::atomic<bool>* stop = nullptr;  // when set (Ctrl-C), the loop ends early
+};
+
+// What a run did, counted as it went.
+struct SessionCounts {
+  std::size_t iterations = 0, localised = 0, skipped = 0, validated = 0, flagged = 0, inserted = 0;
+  double first_timestamp_s = 0.0, min_timestamp_s = 0.0, max_timestamp_s = 0.0;
+  double wall_s = 0.0;
+  bool interrupted = false;  // stopped by options.stop
+  std::string failure;       // why the run ended early on an error; "" when it did not
+
+  double span_s() const { return max_timestamp_s - min_timestamp_s; }
+  void Add(const IterationRecord& record);
+};
+
+// Builds the session when the first scan has been read: a source's mounting is final then
+// (CARMEN's PARAM lines precede the first scan).
+using SessionFactory = std::function<std::unique_ptr<Session>(const IterationSource& source)>;
+
+struct SessionRun {
+  std::unique_ptr<Session> session;  // null when the source had no scan
+  SessionCounts counts;
+};
+
+// Processes the source's iterations one by one, recording each in `run`.
+SessionRun RunSession(IterationSource& source, const SessionFactory& make_session, RunFolder& run,
+                      const SessionRunOptions& options);
+
+// The mounting in force: the source's, unless the configuration sets one and the command line did
+// not override the source's (`source_overridden`, e.g. --laser-offset).
+LaserMounting ChooseMounting(const LaserMounting& from_source, const LaserMounting& configured,
+                             bool source_overridden);
+
+// summary.json's counts, throughput and problems (the caller adds the configuration and inputs).
+nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source);
+
+}  // namespace scanloc

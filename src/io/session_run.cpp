@@ -1,0 +1,111 @@
+#include "scanloc/io/session_run.hpp"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+namespace scanloc {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double PeakResidentMegabytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux reports kilobytes
+}
+
+void PrintProgress(const SessionRun& run, const IterationSource& source, double elapsed_s,
+                   std::size_t map_points) {
+  const double progress = source.Progress();
+  const double eta_s = progress > 0.0 ? elapsed_s * (1.0 - progress) / progress : 0.0;
+  const SessionCounts& c = run.counts;
+  std::fprintf(
+      stderr, "\rscans %zu, %.0f scans/s, %.0f× real time, map %zu points, %3.0f %%, ETA %.0f s   ",
+      c.iterations, static_cast<double>(c.iterations) / elapsed_s, c.span_s() / elapsed_s,
+      map_points, 100.0 * progress, eta_s);
+}
+
+}  // namespace
+
+void SessionCounts::Add(const IterationRecord& record) {
+  if (iterations == 0) first_timestamp_s = min_timestamp_s = max_timestamp_s = record.timestamp_s;
+  ++iterations;
+  min_timestamp_s = std::min(min_timestamp_s, record.timestamp_s);
+  max_timestamp_s = std::max(max_timestamp_s, record.timestamp_s);
+  skipped += record.skipped;
+  localised += !record.skipped;
+  validated += record.validated;
+  flagged += !record.skipped && !record.validated;
+  inserted += record.inserted;
+}
+
+SessionRun RunSession(IterationSource& source, const SessionFactory& make_session, RunFolder& run,
+                      const SessionRunOptions& options) {
+  SessionRun result;
+  const auto start = Clock::now();
+  auto last_progress = start;
+  Iteration iteration;
+  auto wanted = [&] {
+    return options.max_scans == 0 || result.counts.iterations < options.max_scans;
+  };
+  auto stopped = [&] { return options.stop != nullptr && options.stop->load(); };
+  try {
+    while (!stopped() && wanted() && source.Next(iteration)) {
+      if (!result.session) result.session = make_session(source);
+      const IterationRecord record = result.session->Process(iteration);
+      run.Record(record);
+      result.counts.Add(record);
+      if (options.progress && Clock::now() - last_progress > std::chrono::seconds(2)) {
+        last_progress = Clock::now();
+        PrintProgress(result, source, SecondsSince(start), record.map_points);
+      }
+    }
+  } catch (const std::exception& e) {
+    result.counts.failure = e.what();
+  }
+  if (options.progress) std::fprintf(stderr, "\n");
+  result.counts.interrupted = stopped();
+  result.counts.wall_s = SecondsSince(start);
+  return result;
+}
+
+LaserMounting ChooseMounting(const LaserMounting& from_source, const LaserMounting& configured,
+                             bool source_overridden) {
+  const Pose2D& T = configured.T_robot_laser;
+  const bool configured_sets_one = T.x_m != 0.0 || T.y_m != 0.0 || T.yaw_rad != 0.0;
+  return source_overridden || !configured_sets_one ? from_source : configured;
+}
+
+nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source) {
+  const SessionCounts& c = run.counts;
+  const double wall_s = c.wall_s;
+  nlohmann::json summary = {
+      {"interrupted", c.interrupted},
+      {"iterations", c.iterations},
+      {"localised", c.localised},
+      {"skipped", c.skipped},
+      {"validated", c.validated},
+      {"flagged_not_validated", c.flagged},
+      {"inserted", c.inserted},
+      {"map_points", run.session ? run.session->point_map().live_size() : 0},
+      {"wall_time_s", wall_s},
+      {"data_span_s", c.span_s()},
+      {"first_timestamp_s", c.first_timestamp_s},
+      {"scans_per_s", wall_s > 0 ? static_cast<double>(c.iterations) / wall_s : 0.0},
+      {"times_real_time", wall_s > 0 ? c.span_s() / wall_s : 0.0},
+      {"peak_resident_mb", PeakResidentMegabytes()},
+      {"odometry_reversed_increments", source.repaired_odometry_increments()}};
+  if (c.iterations == 0) summary["problem"] = "the sequence has no scan";
+  if (!c.failure.empty()) summary["failed"] = c.failure;
+  return summary;
+}
+
+}  // namespace scanloc
