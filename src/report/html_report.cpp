@@ -66,8 +66,9 @@ std::string Pose(const Pose2D& p) {
 
 std::vector<Eigen::Vector2d> Points(const PointMap& map) {
   std::vector<Eigen::Vector2d> points;
-  points.reserve(map.size());
-  for (std::size_t i = 0; i < map.size(); ++i) points.push_back(map.point(i));
+  points.reserve(map.live_size());
+  for (std::size_t i = 0; i < map.size(); ++i)
+    if (map.alive(i)) points.push_back(map.point(i));  // carved points are gone
   return points;
 }
 
@@ -125,19 +126,12 @@ std::string IterationSection(const IterationRow& row, const IterationFigures& fi
   return out.str();
 }
 
-}  // namespace
-
-std::string RenderRunReport(const RunContents& run, const ReportOptions& options,
-                            ReportResult& result) {
+// The selected iterations' map figures: with their scans and the map rebuilt up to them when
+// the sequence can be read, else over the final map.
+std::map<std::size_t, IterationFigures> DrawIterations(const RunContents& run,
+                                                       const IterationSelection& selection,
+                                                       ReportResult& result) {
   const std::vector<IterationRow>& rows = run.iterations.rows;
-  const IterationSelection selection = SelectIterations(rows, options.selection);
-  result.iterations = rows.size();
-  result.drawn = selection.indices.size();
-  result.selection_rule = selection.rule;
-  result.notes = run.notes;
-
-  // The selected iterations' map figures: with their scans and the map rebuilt up to them when
-  // the sequence can be read, else over the final map.
   std::map<std::size_t, IterationFigures> figures;
   const LaserMounting& mounting = run.config.mounting;
   auto draw = [&](const IterationRow& row, const LaserScan* scan,
@@ -181,9 +175,8 @@ std::string RenderRunReport(const RunContents& run, const ReportOptions& options
         run.log_path, rows, selection.indices, mounting, run.config.session.extension, map,
         [&](const IterationRow& row, const LaserScan& scan, const PointMap& map_before) {
           // The session's own count after the previous iteration, to compare.
-          std::string note =
-              ", rebuilt from the scans inserted so far: " + std::to_string(map_before.size()) +
-              " points";
+          std::string note = ", rebuilt from the scans inserted so far: " +
+                             std::to_string(map_before.live_size()) + " points";
           if (row.index > 0)
             note +=
                 " (the session's map had " + std::to_string(rows[row.index - 1].map_points) + ")";
@@ -198,7 +191,11 @@ std::string RenderRunReport(const RunContents& run, const ReportOptions& options
   for (const std::size_t index : selection.indices)
     if (!figures.count(index)) draw(rows[index], nullptr, run.final_map, "the final map", "");
 
-  std::ostringstream page;
+  return figures;
+}
+
+// The page's head, title, navigation and notes.
+void WritePageHead(std::ostream& page, const RunContents& run, const ReportResult& result) {
   const std::string name = std::filesystem::path(run.directory).filename().string();
   page << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
        << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
@@ -215,16 +212,15 @@ std::string RenderRunReport(const RunContents& run, const ReportOptions& options
     for (const std::string& note : result.notes) page << "<li>" << Escape(note) << "</li>\n";
     page << "</ul>\n";
   }
+}
 
-  page << "<h2 id=\"summary\">Session summary</h2>\n" << SummaryTable(run.summary, rows);
-  if (const auto it = run.summary.find("config"); it != run.summary.end())
-    page << "<details><summary>Configuration of the session</summary><pre>" << Escape(it->dump(2))
-         << "</pre></details>\n";
-
+// The trajectory over the final map, and close up when that shows more.
+void WriteTrajectorySection(std::ostream& page, const RunContents& run,
+                            const IterationSelection& selection) {
   page << "<h2 id=\"trajectory\">Trajectory over the final map</h2>\n<div "
           "class=\"figures\">\n<figure>";
   TrajectoryFigureInput trajectory;
-  trajectory.rows = &rows;
+  trajectory.rows = &run.iterations.rows;
   trajectory.map_points = &run.final_map;
   trajectory.line_map = &run.line_map;
   trajectory.linked = selection.indices;
@@ -239,7 +235,11 @@ std::string RenderRunReport(const RunContents& run, const ReportOptions& options
          << "<figcaption>The same, close up on the trajectory.</figcaption></figure>\n";
   }
   page << "</div>\n";
+}
 
+// EV and MP/NVP of every localised iteration against the rules' bounds.
+void WriteMomentsSection(std::ostream& page, const RunContents& run) {
+  const std::vector<IterationRow>& rows = run.iterations.rows;
   // The rules as the session applied them: its own E_max replaces validation's (SessionOptions).
   ValidationOptions session_rules = run.config.validation;
   session_rules.max_expect_value_m = run.config.session.max_expect_value_m;
@@ -250,7 +250,29 @@ std::string RenderRunReport(const RunContents& run, const ReportOptions& options
        << FormatFixed(100.0 * session_rules.max_expect_value_m, 1)
        << " cm and rule 1's minimum ratio " << FormatFixed(session_rules.min_match_ratio, 2)
        << ".</figcaption></figure>\n";
+}
 
+}  // namespace
+
+std::string RenderRunReport(const RunContents& run, const ReportOptions& options,
+                            ReportResult& result) {
+  const std::vector<IterationRow>& rows = run.iterations.rows;
+  const IterationSelection selection = SelectIterations(rows, options.selection);
+  result.iterations = rows.size();
+  result.drawn = selection.indices.size();
+  result.selection_rule = selection.rule;
+  result.notes = run.notes;
+  std::map<std::size_t, IterationFigures> figures = DrawIterations(run, selection, result);
+
+  std::ostringstream page;
+  WritePageHead(page, run, result);
+  page << "<h2 id=\"summary\">Session summary</h2>\n" << SummaryTable(run.summary, rows);
+  if (const auto it = run.summary.find("config"); it != run.summary.end())
+    page << "<details><summary>Configuration of the session</summary><pre>" << Escape(it->dump(2))
+         << "</pre></details>\n";
+
+  WriteTrajectorySection(page, run, selection);
+  WriteMomentsSection(page, run);
   page << "<h2 id=\"iterations\">Iterations drawn</h2>\n<p>Selection: " << Escape(selection.rule)
        << ". Change it with <code>--first N</code>, <code>--every K</code>, <code>--flagged "
           "N</code> and <code>--iterations 3,10-12</code>.</p>\n";

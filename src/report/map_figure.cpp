@@ -59,30 +59,23 @@ Pose2D ScanDrawnAt(const IterationRow& row, const LaserMounting& mounting) {
   return row.refinement ? row.refinement->T_world_laser : mounting.LaserPose(row.T_world_robot);
 }
 
-std::string IterationMapFigure(const IterationFigureInput& input, const std::string& id) {
-  if (!input.row) throw std::invalid_argument("IterationMapFigure: no iteration given");
-  const IterationRow& row = *input.row;
-  const Pose2D T_world_laser = ScanDrawnAt(row, input.mounting);
-  const std::vector<Eigen::Vector2d> scan_world =
-      input.scan ? ScanPointsWorld(*input.scan, T_world_laser) : std::vector<Eigen::Vector2d>{};
+namespace {
 
-  const bool close_up = input.view == IterationView::kCandidates;
+// The part of the world drawn: the scan (its central part) and every posture of the iteration,
+// or in the close-up the postures alone.
+Box ViewOf(const IterationRow& row, const std::vector<Eigen::Vector2d>& scan_world, bool close_up) {
   Box view = close_up ? Box{} : CentralBox(scan_world, kScanQuantile);
   for (const CandidateRow& c : row.candidates) view.Extend(c.T_world_robot.Translation());
   view.Extend(row.T_world_robot.Translation());
   view.Extend(row.prediction.Translation());
   if (row.refinement) view.Extend(row.refinement->T_world_laser.Translation());
-  if (close_up)
-    view = view.Padded(kCloseUpPadding, kCloseUpMinViewM);
-  else
-    view = view.Padded(kPadding,
-                       scan_world.empty() && row.candidates.empty() ? kDefaultViewM : kMinViewM);
-  const double width = close_up ? kCloseUpPx : kWidthPx;
-  const double plot_height = close_up ? kCloseUpPx : kPlotHeightPx;
-  const double arrow_px = close_up ? kCloseUpArrowPx : kArrowPx;
-  const double chosen_arrow_px = close_up ? kCloseUpChosenArrowPx : kChosenArrowPx;
+  if (close_up) return view.Padded(kCloseUpPadding, kCloseUpMinViewM);
+  return view.Padded(kPadding,
+                     scan_world.empty() && row.candidates.empty() ? kDefaultViewM : kMinViewM);
+}
 
-  const bool has_lines = input.line_map && !input.line_map->empty();
+std::vector<LegendItem> LegendOf(const IterationFigureInput& input, bool has_lines) {
+  const IterationRow& row = *input.row;
   std::vector<LegendItem> legend = {{LegendItem::Symbol::kDot, style::kMapPoint, input.map_label}};
   if (has_lines) legend.push_back({LegendItem::Symbol::kLine, style::kLineMap, "line map"});
   if (input.scan)
@@ -95,15 +88,14 @@ std::string IterationMapFigure(const IterationFigureInput& input, const std::str
   if (row.refinement)
     legend.push_back({LegendItem::Symbol::kArrow, style::kRefined, "chosen, refined"});
   legend.push_back({LegendItem::Symbol::kRing, "#000", "odometry prediction"});
-  const double legend_height = close_up ? 0.0 : LegendHeight(legend, width - 16) + 10;
+  return legend;
+}
 
-  SvgCanvas svg(width, plot_height + legend_height, id,
-                "iteration " + std::to_string(row.index) +
-                    (close_up ? ": close-up of the candidates" : " on the map"));
-  const MapFrame frame(view, 0, 0, width, plot_height);
-  svg.Rect(0, 0, width, plot_height, "white", style::kFrame, 1.0);
-  LabelPlacer labels(2, 2, width - 4, plot_height - 4);
-
+// The map's points and lines, then the scan, clipped to the plot; false when no map shows.
+bool DrawMapAndScan(SvgCanvas& svg, const MapFrame& frame, const IterationFigureInput& input,
+                    const std::vector<Eigen::Vector2d>& scan_world, double width,
+                    double plot_height, bool close_up) {
+  const bool has_lines = input.line_map && !input.line_map->empty();
   svg.BeginClippedGroup(0, 0, width, plot_height);
   std::vector<Eigen::Vector2d> pixels;
   if (input.map_points)
@@ -112,7 +104,7 @@ std::string IterationMapFigure(const IterationFigureInput& input, const std::str
       if (frame.Inside(px, 2.0)) pixels.push_back(px);
     }
   svg.Dots(pixels, close_up ? 3.2 : 2.0, style::kMapPoint);
-  const bool map_empty = pixels.empty() && !has_lines;
+  const bool map_shown = !pixels.empty() || has_lines;
   if (has_lines)
     for (const Segment& s : input.line_map->segments)
       svg.Line(frame.ToPixel(s.a), frame.ToPixel(s.b), style::kLineMap, 1.3);
@@ -120,9 +112,20 @@ std::string IterationMapFigure(const IterationFigureInput& input, const std::str
   for (const Eigen::Vector2d& p : scan_world) pixels.push_back(frame.ToPixel(p));
   svg.Dots(pixels, close_up ? 3.6 : 2.6, style::kScan);
   svg.EndGroup();
+  return map_shown;
+}
 
-  // The odometry prediction, then the candidates (the chosen one last, on top), then the refined
-  // posture.
+struct PendingLabel {
+  Eigen::Vector2d anchor;
+  std::string text, colour;
+  bool bold;
+};
+
+// The odometry prediction, then the candidates (the chosen one last, on top), then the refined
+// posture; returns the candidates' labels, to be placed once every arrow is drawn.
+std::vector<PendingLabel> DrawPostures(SvgCanvas& svg, const MapFrame& frame,
+                                       const IterationRow& row, LabelPlacer& labels,
+                                       double arrow_px, double chosen_arrow_px) {
   const Eigen::Vector2d prediction = frame.ToPixel(row.prediction.Translation());
   svg.BeginGroup("odometry prediction: x " + FormatFixed(row.prediction.x_m, 3) + " m, y " +
                  FormatFixed(row.prediction.y_m, 3) + " m, \xCE\xB8 " +
@@ -134,11 +137,6 @@ std::string IterationMapFigure(const IterationFigureInput& input, const std::str
   for (const CandidateRow& c : row.candidates)
     if (c.label != row.chosen) order.push_back(&c);
   if (const CandidateRow* chosen = row.chosen_candidate()) order.push_back(chosen);
-  struct PendingLabel {
-    Eigen::Vector2d anchor;
-    std::string text, colour;
-    bool bold;
-  };
   std::vector<PendingLabel> pending;
   for (const CandidateRow* c : order) {
     const bool chosen = c->label == row.chosen;
@@ -163,8 +161,11 @@ std::string IterationMapFigure(const IterationFigureInput& input, const std::str
     svg.Arrow(tail, refined.yaw_rad, chosen_arrow_px, style::kRefined, 2.0);
     svg.EndGroup();
   }
-  DrawScaleBar(svg, frame, &labels);
-  // Labels last, so that no arrow hides one; the chosen candidate's first, so that it is placed.
+  return pending;
+}
+
+// Labels last, so that no arrow hides one; the chosen candidate's first, so that it is placed.
+void PlaceLabels(SvgCanvas& svg, std::vector<PendingLabel> pending, LabelPlacer& labels) {
   std::stable_partition(pending.begin(), pending.end(),
                         [](const PendingLabel& l) { return l.bold; });
   for (const PendingLabel& l : pending)
@@ -173,10 +174,40 @@ std::string IterationMapFigure(const IterationFigureInput& input, const std::str
                EstimateTextWidth(l.text, kLabelFontPx) + 2, kLabelFontPx + 3, "white");
       svg.Text(*at, l.text, {kLabelFontPx, "start", l.colour, l.bold});
     }
+}
+
+}  // namespace
+
+std::string IterationMapFigure(const IterationFigureInput& input, const std::string& id) {
+  if (!input.row) throw std::invalid_argument("IterationMapFigure: no iteration given");
+  const IterationRow& row = *input.row;
+  const Pose2D T_world_laser = ScanDrawnAt(row, input.mounting);
+  const std::vector<Eigen::Vector2d> scan_world =
+      input.scan ? ScanPointsWorld(*input.scan, T_world_laser) : std::vector<Eigen::Vector2d>{};
+  const bool close_up = input.view == IterationView::kCandidates;
+  const double width = close_up ? kCloseUpPx : kWidthPx;
+  const double plot_height = close_up ? kCloseUpPx : kPlotHeightPx;
+  const bool has_lines = input.line_map && !input.line_map->empty();
+  const std::vector<LegendItem> legend = LegendOf(input, has_lines);
+  const double legend_height = close_up ? 0.0 : LegendHeight(legend, width - 16) + 10;
+
+  SvgCanvas svg(width, plot_height + legend_height, id,
+                "iteration " + std::to_string(row.index) +
+                    (close_up ? ": close-up of the candidates" : " on the map"));
+  const MapFrame frame(ViewOf(row, scan_world, close_up), 0, 0, width, plot_height);
+  svg.Rect(0, 0, width, plot_height, "white", style::kFrame, 1.0);
+  LabelPlacer labels(2, 2, width - 4, plot_height - 4);
+  const bool map_shown =
+      DrawMapAndScan(svg, frame, input, scan_world, width, plot_height, close_up);
+  std::vector<PendingLabel> pending =
+      DrawPostures(svg, frame, row, labels, close_up ? kCloseUpArrowPx : kArrowPx,
+                   close_up ? kCloseUpChosenArrowPx : kChosenArrowPx);
+  DrawScaleBar(svg, frame, &labels);
+  PlaceLabels(svg, std::move(pending), labels);
 
   std::string message;
   if (!input.scan) message = "scan unavailable";
-  if (map_empty) message += std::string(message.empty() ? "" : "; ") + "no map in this view";
+  if (!map_shown) message += std::string(message.empty() ? "" : "; ") + "no map in this view";
   if (!message.empty()) svg.Text({width / 2, 20}, message, {13.0, "middle", style::kMessage, true});
   if (!close_up) DrawLegend(svg, legend, 8, plot_height + 14, width - 16);
   return svg.Finish();
