@@ -12,12 +12,12 @@
 #include <string>
 #include <vector>
 
+#include "run_scanloc.hpp"
 #include "scanloc/io/scan_file.hpp"
 #include "scanloc/io/sequence_sources.hpp"
 #include "scanloc/io/trajectory.hpp"
 #include "scanloc/maps/point_map_io.hpp"
 #include "scanloc/worlds/laser_simulator.hpp"
-#include "run_scanloc.hpp"
 #include "test_support.hpp"
 
 namespace scanloc {
@@ -366,6 +366,38 @@ TEST_F(CliTest, SessionRefusesAMalformedSequenceLineNamingFileAndLine) {
   EXPECT_TRUE(r.exited) << r;
   EXPECT_NE(r.exit_code, 0) << r;
   EXPECT_NE(r.err.find("bad.seq.jsonl:2:"), std::string::npos) << r;
+}
+
+}  // namespace
+}  // namespace scanloc
+
+namespace scanloc {
+namespace {
+
+class SessionFailureTest : public testing::TemporaryDirTest {};
+
+// A sequence whose sixth line is broken: the session stops there with an error naming the file and
+// line, exits ≠ 0, and still writes the trajectory, map and summary of the five scans before it.
+TEST_F(SessionFailureTest, AMalformedLineMidRunFailsButKeepsWhatWasDone) {
+  std::ifstream in(kClassroom + "/classroom.seq.jsonl");
+  std::string text, line;
+  for (int i = 0; i < 6 && std::getline(in, line); ++i) text += line + "\n";  // header + 5 scans
+  const std::string log = Write("broken.seq.jsonl", text + "{\"timestamp_s\": oops}\n");
+  const std::string out = dir_ + "/run";
+  const testing::ScanlocRun r =
+      testing::RunScanloc({"session", "--log", log, "--line-map", kMap, "--initial-pose", "1.126",
+                           "3.112", "0.0463", "--out", out, "--quiet"},
+                          dir_);
+  ASSERT_TRUE(r.exited) << r;
+  EXPECT_NE(r.exit_code, 0) << r;
+  EXPECT_NE(r.err.find("broken.seq.jsonl:7"), std::string::npos) << r;
+  const nlohmann::json summary =
+      nlohmann::json::parse(testing::ReadWholeFile(out + "/summary.json"));
+  EXPECT_EQ(summary["iterations"], 5);
+  ASSERT_TRUE(summary.contains("failed"));
+  EXPECT_NE(summary["failed"].get<std::string>().find("broken.seq.jsonl:7"), std::string::npos);
+  EXPECT_EQ(ReadTumTrajectory(out + "/trajectory.tum").size(), 5u);
+  EXPECT_GT(LoadPointMapPcd(out + "/map.pcd").live_size(), 0u);
 }
 
 }  // namespace

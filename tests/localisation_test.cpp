@@ -1,0 +1,114 @@
+// Localise: which candidates are refined under each policy, what is kept, and that the refinements
+// start from the evaluation's own scores.
+
+#include "scanloc/session/localisation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "test_support.hpp"
+
+namespace scanloc {
+namespace {
+
+class LocalisationTest : public ::testing::Test {
+ protected:
+  // The L-shaped room seen from `truth`; candidates: the truth, the truth 0.1 m and 2° off, and
+  // one 3 m away facing elsewhere (rejected by the rules).
+  LocalisationTest()
+      : room_(testing::SmallRoomWithL()),
+        truth_{3.0, 2.5, 0.3},
+        scan_(testing::NoisyScan(room_, truth_, 720, 0.01, 7)),
+        candidates_{{truth_, "truth"},
+                    {{3.1, 2.5, 0.3 + 2.0 * M_PI / 180.0}, "near"},
+                    {{6.0, 5.0, -2.0}, "far"}} {}
+
+  LocalisationResult Run(RefinePolicy policy, int max_refined = 0) const {
+    return Localise({&room_, nullptr}, scan_, candidates_, {}, {}, policy, max_refined);
+  }
+
+  LineMap room_;
+  Pose2D truth_;
+  LaserScan scan_;
+  std::vector<Candidate> candidates_;
+};
+
+TEST_F(LocalisationTest, WithoutRefinementOnlyTheCandidatesAsGivenAreRanked) {
+  const LocalisationResult result = Run(RefinePolicy::kNone);
+  ASSERT_EQ(result.evaluated.size(), 3u);
+  EXPECT_TRUE(result.refined.empty());
+  EXPECT_EQ(result.Kept(), nullptr);
+  EXPECT_EQ(result.best_evaluated, 0);
+  EXPECT_EQ(result.evaluated[0].rank, 0);
+  EXPECT_NE(result.evaluated[2].verdict, Verdict::kValid);
+  EXPECT_TRUE(result.validated());
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(result.evaluated[i].candidate.label, candidates_[i].label);
+    EXPECT_DOUBLE_EQ(result.evaluated[i].T_world_robot.x_m, candidates_[i].T_world_robot.x_m);
+  }
+}
+
+TEST_F(LocalisationTest, BestValidRefinesTheValidOnesBestFirstUpToTheLimit) {
+  const LocalisationResult one = Run(RefinePolicy::kBestValid, 1);
+  ASSERT_EQ(one.refined.size(), 1u);
+  EXPECT_EQ(one.refined[0].from, one.best_evaluated);
+  const LocalisationResult three = Run(RefinePolicy::kBestValid, 3);
+  std::size_t valid = 0;
+  for (const RankedCandidate& c : three.evaluated) valid += c.verdict == Verdict::kValid;
+  ASSERT_EQ(three.refined.size(), valid);  // the far candidate is not refined
+  for (std::size_t r = 0; r < three.refined.size(); ++r)
+    EXPECT_EQ(three.evaluated[three.refined[r].from].rank, static_cast<int>(r));
+  ASSERT_NE(three.Kept(), nullptr);
+  EXPECT_TRUE(three.validated());
+  const Pose2D error = Between(truth_, three.Kept()->T_world_robot);
+  EXPECT_LT(std::hypot(error.x_m, error.y_m), 0.01);  // noise 1 cm, 720 beams
+  EXPECT_LT(std::abs(error.yaw_rad), 0.002);
+}
+
+TEST_F(LocalisationTest, WhenNoneIsValidTheCheapestIsRefinedAndKeptAsAFlaggedGuess) {
+  LocalisationOptions options;
+  options.validation.max_expect_value_m = 1e-4;  // rule 2 can never pass
+  const LocalisationResult result =
+      Localise({&room_, nullptr}, scan_, candidates_, {}, options, RefinePolicy::kBestValid, 3);
+  EXPECT_EQ(result.best_evaluated, -1);
+  ASSERT_EQ(result.refined.size(), 1u);
+  int cheapest = 0;
+  for (int i = 1; i < 3; ++i)
+    if (result.evaluated[i].cost < result.evaluated[cheapest].cost) cheapest = i;
+  EXPECT_EQ(cheapest, 0);  // the truth
+  EXPECT_EQ(result.refined[0].from, cheapest);
+  EXPECT_EQ(result.kept, 0);
+  EXPECT_EQ(result.best_refined, -1);
+  EXPECT_EQ(result.Kept()->verdict, Verdict::kHighExpectValue);
+  EXPECT_FALSE(result.validated());
+  ASSERT_FALSE(result.problems.empty());
+  EXPECT_EQ(result.problems.back(), "no candidate passed the validation rules");
+}
+
+TEST_F(LocalisationTest, AllRefinesEveryCandidateInInputOrderFromItsEvaluatedScore) {
+  const LocalisationResult result = Run(RefinePolicy::kAll);
+  ASSERT_EQ(result.refined.size(), 3u);
+  for (int i = 0; i < 3; ++i) {
+    const RankedCandidate& refined = result.refined[i];
+    EXPECT_EQ(refined.from, i);
+    ASSERT_TRUE(refined.refinement.has_value());
+    EXPECT_EQ(refined.refinement->test_before.match_pairs, result.evaluated[i].test.match_pairs);
+    EXPECT_EQ(refined.refinement->test_before.histogram, result.evaluated[i].test.histogram);
+    EXPECT_EQ(refined.test.histogram, refined.refinement->test_after.histogram);
+    EXPECT_DOUBLE_EQ(refined.T_world_laser.x_m, refined.refinement->T_world_laser.x_m);
+  }
+}
+
+TEST_F(LocalisationTest, AnEmptyMapIsSaidAndNothingValidates) {
+  const LineMap empty;
+  const LocalisationResult result =
+      Localise({&empty, nullptr}, scan_, candidates_, {}, {}, RefinePolicy::kBestValid, 3);
+  EXPECT_FALSE(result.validated());
+  ASSERT_FALSE(result.problems.empty());
+  EXPECT_EQ(result.problems.front(), "the map is empty");
+  for (const RankedCandidate& c : result.evaluated) EXPECT_EQ(c.verdict, Verdict::kNoValidPairs);
+}
+
+}  // namespace
+}  // namespace scanloc
