@@ -4,8 +4,10 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include "scanloc/io/record_keys.hpp"
 
 namespace scanloc {
+namespace keys = record_keys;
 
 namespace {
 
@@ -76,35 +78,36 @@ void PrintRefinementTable(std::ostream& out, const LocalisationResult& result) {
 }
 
 nlohmann::json ToJson(const LikelihoodTestResult& t) {
-  return {{"valid_pairs", t.valid_pairs},     {"match_pairs", t.match_pairs},
-          {"match_ratio", t.MatchRatio()},    {"expect_value_m", t.expect_value_m},
-          {"dispersion_m2", t.dispersion_m2}, {"sqrt_dispersion_m", std::sqrt(t.dispersion_m2)},
-          {"histogram", t.histogram}};
+  return {
+      {keys::kValidPairs, t.valid_pairs},     {keys::kMatchPairs, t.match_pairs},
+      {keys::kMatchRatio, t.MatchRatio()},    {keys::kExpectValueM, t.expect_value_m},
+      {keys::kDispersionM2, t.dispersion_m2}, {keys::kSqrtDispersionM, std::sqrt(t.dispersion_m2)},
+      {keys::kHistogram, t.histogram}};
 }
 
 nlohmann::json ToJson(const LikelihoodDistanceResult& d) {
-  return {{"valid_pairs", d.valid_pairs},
-          {"weighted_pairs", d.weighted_pairs},
-          {"expect_value_m", d.expect_value_m},
-          {"dispersion_m2", d.dispersion_m2},
-          {"cost_m2", d.cost_m2}};
+  return {{keys::kValidPairs, d.valid_pairs},
+          {keys::kWeightedPairs, d.weighted_pairs},
+          {keys::kExpectValueM, d.expect_value_m},
+          {keys::kDispersionM2, d.dispersion_m2},
+          {keys::kCostM2, d.cost_m2}};
 }
 
 nlohmann::json ToJson(const Pose2D& p) {
-  return {{"x_m", p.x_m}, {"y_m", p.y_m}, {"yaw_rad", p.yaw_rad}};
+  return {{keys::kXM, p.x_m}, {keys::kYM, p.y_m}, {keys::kYawRad, p.yaw_rad}};
 }
 
 nlohmann::json ToJson(const RefinementResult& r) {
-  nlohmann::json out = {{"T_world_laser", ToJson(r.T_world_laser)},
-                        {"converged", r.converged},
-                        {"iterations", r.iterations},
-                        {"likelihood_test_before", ToJson(r.test_before)},
-                        {"likelihood_test_after", ToJson(r.test_after)},
-                        {"likelihood_distance_before", ToJson(r.distance_before)},
-                        {"likelihood_distance_after", ToJson(r.distance_after)},
-                        {"degenerate", r.degenerate},
-                        {"degeneracy", r.degeneracy},
-                        {"time_s", r.time_s}};
+  nlohmann::json out = {{keys::kTWorldLaser, ToJson(r.T_world_laser)},
+                        {keys::kConverged, r.converged},
+                        {keys::kIterations, r.iterations},
+                        {keys::kLikelihoodTestBefore, ToJson(r.test_before)},
+                        {keys::kLikelihoodTestAfter, ToJson(r.test_after)},
+                        {keys::kLikelihoodDistanceBefore, ToJson(r.distance_before)},
+                        {keys::kLikelihoodDistanceAfter, ToJson(r.distance_after)},
+                        {keys::kDegenerate, r.degenerate},
+                        {keys::kDegeneracy, r.degeneracy},
+                        {keys::kTimeS, r.time_s}};
   if (r.has_covariance) {
     nlohmann::json rows = nlohmann::json::array();
     for (int i = 0; i < 3; ++i)
@@ -119,36 +122,37 @@ nlohmann::json RefinedToJson(const LocalisationResult& result) {
   for (const auto& c : result.refined) {
     const Pose2D& a = c.candidate.T_world_robot;
     const Pose2D& b = c.T_world_robot;
-    candidates.push_back({{"label", c.candidate.label},
-                          {"initial_T_world_robot", ToJson(a)},
-                          {"refined_T_world_robot", ToJson(b)},
-                          {"correction_mm_mm_mrad",
+    candidates.push_back({{keys::kLabel, c.candidate.label},
+                          {keys::kInitialTWorldRobot, ToJson(a)},
+                          {keys::kRefinedTWorldRobot, ToJson(b)},
+                          {keys::kCorrectionMmMmMrad,
                            {1e3 * (b.x_m - a.x_m), 1e3 * (b.y_m - a.y_m),
                             1e3 * NormalizeAngle(b.yaw_rad - a.yaw_rad)}},
-                          {"refinement", ToJson(*c.refinement)},
-                          {"cost", c.cost},
-                          {"valid", c.verdict == Verdict::kValid},
-                          {"reason", ToString(c.verdict)},
-                          {"rank", c.rank}});
+                          {keys::kRefinement, ToJson(*c.refinement)},
+                          {keys::kCost, c.cost},
+                          {keys::kValid, c.verdict == Verdict::kValid},
+                          {keys::kReason, ToString(c.verdict)},
+                          {keys::kRank, c.rank}});
   }
-  return {{"candidates", candidates}, {"best", BestLabel(result.refined, result.best_refined)}};
+  return {{keys::kCandidates, candidates},
+          {keys::kBest, BestLabel(result.refined, result.best_refined)}};
 }
 
 nlohmann::json EvaluatedToJson(const LocalisationResult& result) {
   nlohmann::json candidates = nlohmann::json::array();
   for (const auto& c : result.evaluated)
-    candidates.push_back({{"label", c.candidate.label},
-                          {"T_world_robot", ToJson(c.candidate.T_world_robot)},
-                          {"T_world_laser", ToJson(c.T_world_laser)},
-                          {"likelihood_test", ToJson(c.test)},
-                          {"likelihood_distance", ToJson(c.distance)},
-                          {"cost", c.cost},
-                          {"valid", c.verdict == Verdict::kValid},
-                          {"reason", ToString(c.verdict)},
-                          {"rank", c.rank}});
-  return {{"candidates", candidates},
-          {"best", BestLabel(result.evaluated, result.best_evaluated)},
-          {"problems", result.problems}};
+    candidates.push_back({{keys::kLabel, c.candidate.label},
+                          {keys::kTWorldRobot, ToJson(c.candidate.T_world_robot)},
+                          {keys::kTWorldLaser, ToJson(c.T_world_laser)},
+                          {keys::kLikelihoodTest, ToJson(c.test)},
+                          {keys::kLikelihoodDistance, ToJson(c.distance)},
+                          {keys::kCost, c.cost},
+                          {keys::kValid, c.verdict == Verdict::kValid},
+                          {keys::kReason, ToString(c.verdict)},
+                          {keys::kRank, c.rank}});
+  return {{keys::kCandidates, candidates},
+          {keys::kBest, BestLabel(result.evaluated, result.best_evaluated)},
+          {keys::kProblems, result.problems}};
 }
 
 }  // namespace scanloc

@@ -6,9 +6,11 @@
 
 #include "scanloc/common/atomic_file.hpp"
 #include "scanloc/io/candidate_report.hpp"
+#include "scanloc/io/record_keys.hpp"
 #include "scanloc/maps/point_map_io.hpp"
 
 namespace scanloc {
+namespace keys = record_keys;
 
 namespace {
 
@@ -16,14 +18,14 @@ namespace {
 nlohmann::json RefinedCandidatesJson(const LocalisationResult& localisation) {
   nlohmann::json refined = nlohmann::json::array();
   for (const RankedCandidate& candidate : localisation.refined)
-    refined.push_back({{"candidate", candidate.candidate.label},
-                       {"T_world_laser", ToJson(candidate.T_world_laser)},
-                       {"cost", candidate.cost},
-                       {"rank", candidate.rank},
-                       {"valid", candidate.verdict == Verdict::kValid},
-                       {"reason", ToString(candidate.verdict)},
-                       {"expect_value_m", candidate.test.expect_value_m},
-                       {"match_ratio", candidate.test.MatchRatio()}});
+    refined.push_back({{keys::kCandidate, candidate.candidate.label},
+                       {keys::kTWorldLaser, ToJson(candidate.T_world_laser)},
+                       {keys::kCost, candidate.cost},
+                       {keys::kRank, candidate.rank},
+                       {keys::kValid, candidate.verdict == Verdict::kValid},
+                       {keys::kReason, ToString(candidate.verdict)},
+                       {keys::kExpectValueM, candidate.test.expect_value_m},
+                       {keys::kMatchRatio, candidate.test.MatchRatio()}});
   return refined;
 }
 
@@ -33,23 +35,23 @@ nlohmann::json ToJson(const IterationRecord& r) {
   const LocalisationResult* localisation = r.localisation ? &*r.localisation : nullptr;
   const double evaluate_s = localisation ? localisation->evaluate_s : 0.0;
   const double refine_s = localisation ? localisation->refine_s : 0.0;
-  nlohmann::json out = {{"index", r.index},
-                        {"timestamp_s", r.timestamp_s},
-                        {"origin", r.origin},
-                        {"skipped", r.skipped},
-                        {"first", r.first},
-                        {"prediction", ToJson(r.prediction)},
-                        {"T_world_robot", ToJson(r.T_world_robot)},
-                        {"validated", r.validated},
-                        {"reason", ToString(r.verdict)},
-                        {"inserted", r.inserted},
-                        {"carved", r.carved},
-                        {"map_points", r.map_points},
-                        {"timings_ms",
-                         {{"evaluate", 1e3 * evaluate_s},
-                          {"refine", 1e3 * refine_s},
-                          {"insert", 1e3 * r.insert_s},
-                          {"total", 1e3 * r.total_s}}}};
+  nlohmann::json out = {{keys::kIndex, r.index},
+                        {keys::kTimestampS, r.timestamp_s},
+                        {keys::kOrigin, r.origin},
+                        {keys::kSkipped, r.skipped},
+                        {keys::kFirst, r.first},
+                        {keys::kPrediction, ToJson(r.prediction)},
+                        {keys::kTWorldRobot, ToJson(r.T_world_robot)},
+                        {keys::kValidated, r.validated},
+                        {keys::kReason, ToString(r.verdict)},
+                        {keys::kInserted, r.inserted},
+                        {keys::kCarved, r.carved},
+                        {keys::kMapPoints, r.map_points},
+                        {keys::kTimingsMs,
+                         {{keys::kEvaluate, 1e3 * evaluate_s},
+                          {keys::kRefine, 1e3 * refine_s},
+                          {keys::kInsert, 1e3 * r.insert_s},
+                          {keys::kTotal, 1e3 * r.total_s}}}};
   const RankedCandidate* kept = r.Kept();
   if (localisation && !localisation->evaluated.empty()) {
     out["candidates"] = EvaluatedToJson(*localisation)["candidates"];
@@ -86,8 +88,9 @@ void RunFolder::Finish(const PointMap& map, nlohmann::json summary) {
   records_.close();
   WriteTumTrajectory(Path("trajectory.tum"), trajectory_);
   SavePointMapPcd(map, Path("map.pcd"));
-  summary["files"] = {
-      {"iterations", "iterations.jsonl"}, {"trajectory", "trajectory.tum"}, {"map", "map.pcd"}};
+  summary["files"] = {{keys::kIterations, "iterations.jsonl"},
+                      {"trajectory", "trajectory.tum"},
+                      {"map", "map.pcd"}};
   WriteFileAtomically(Path("summary.json"),
                       [&](std::ostream& out) { out << summary.dump(2) << '\n'; });
 }

@@ -5,8 +5,10 @@
 #include <stdexcept>
 
 #include "scanloc/common/parse_error.hpp"
+#include "scanloc/io/record_keys.hpp"
 
 namespace scanloc {
+namespace keys = record_keys;
 namespace {
 
 using nlohmann::json;
@@ -77,8 +79,8 @@ std::string OptionalString(const json& object, const std::string& key, const std
 
 Pose2D PoseFrom(const json& value, const std::string& path) {
   if (!value.is_object()) Fail(path, "an object with x_m, y_m, yaw_rad");
-  return {RequiredNumber(value, "x_m", path), RequiredNumber(value, "y_m", path),
-          RequiredNumber(value, "yaw_rad", path)};
+  return {RequiredNumber(value, keys::kXM, path), RequiredNumber(value, keys::kYM, path),
+          RequiredNumber(value, keys::kYawRad, path)};
 }
 
 Pose2D RequiredPose(const json& object, const std::string& key, const std::string& path) {
@@ -102,13 +104,13 @@ const json& RequiredArray(const json& object, const std::string& key, const std:
 LikelihoodTestResult TestFrom(const json& value, const std::string& path) {
   if (!value.is_object()) Fail(path, "an object with the Likelihood Test's moments");
   LikelihoodTestResult test;
-  test.valid_pairs = RequiredInteger(value, "valid_pairs", path);
-  test.match_pairs = RequiredInteger(value, "match_pairs", path);
-  test.expect_value_m = RequiredNumber(value, "expect_value_m", path);
-  test.dispersion_m2 = RequiredNumber(value, "dispersion_m2", path);
-  const std::string histogram_path = Join(path, "histogram");
+  test.valid_pairs = RequiredInteger(value, keys::kValidPairs, path);
+  test.match_pairs = RequiredInteger(value, keys::kMatchPairs, path);
+  test.expect_value_m = RequiredNumber(value, keys::kExpectValueM, path);
+  test.dispersion_m2 = RequiredNumber(value, keys::kDispersionM2, path);
+  const std::string histogram_path = Join(path, keys::kHistogram);
   const json& histogram =
-      RequiredArray(value, "histogram", path, "an array of whole numbers (slot counts)");
+      RequiredArray(value, keys::kHistogram, path, "an array of whole numbers (slot counts)");
   for (const json& count : histogram) {
     if (!count.is_number_integer() || count.get<long long>() < 0)
       Fail(histogram_path, "an array of whole numbers (slot counts)");
@@ -127,26 +129,27 @@ std::optional<double> DistanceExpectValue(const json& object, const std::string&
   const auto it = object.find(key);
   if (it == object.end() || it->is_null()) return std::nullopt;
   if (!it->is_object()) Fail(Join(path, key), "an object with the Likelihood Distance");
-  return OptionalNumber(*it, "expect_value_m", Join(path, key));
+  return OptionalNumber(*it, keys::kExpectValueM, Join(path, key));
 }
 
 // The rules' verdict on a candidate, tested or refined: valid, reason and rank.
 template <class Row>
 void ReadVerdict(const json& value, const std::string& path, Row& row) {
-  row.valid = RequiredBool(value, "valid", path);
-  row.reason = OptionalString(value, "reason", path);
-  if (const auto rank = OptionalNumber(value, "rank", path)) row.rank = static_cast<int>(*rank);
+  row.valid = RequiredBool(value, keys::kValid, path);
+  row.reason = OptionalString(value, keys::kReason, path);
+  if (const auto rank = OptionalNumber(value, keys::kRank, path))
+    row.rank = static_cast<int>(*rank);
 }
 
 CandidateRow CandidateFrom(const json& value, const std::string& path) {
   if (!value.is_object()) Fail(path, "an object (a candidate)");
   CandidateRow c;
-  c.label = RequiredString(value, "label", path);
-  c.T_world_robot = RequiredPose(value, "T_world_robot", path);
-  c.T_world_laser = OptionalPose(value, "T_world_laser", path);
-  c.test = RequiredTest(value, "likelihood_test", path);
-  c.distance_expect_value_m = DistanceExpectValue(value, "likelihood_distance", path);
-  c.cost = OptionalNumber(value, "cost", path);
+  c.label = RequiredString(value, keys::kLabel, path);
+  c.T_world_robot = RequiredPose(value, keys::kTWorldRobot, path);
+  c.T_world_laser = OptionalPose(value, keys::kTWorldLaser, path);
+  c.test = RequiredTest(value, keys::kLikelihoodTest, path);
+  c.distance_expect_value_m = DistanceExpectValue(value, keys::kLikelihoodDistance, path);
+  c.cost = OptionalNumber(value, keys::kCost, path);
   ReadVerdict(value, path, c);
   return c;
 }
@@ -154,28 +157,30 @@ CandidateRow CandidateFrom(const json& value, const std::string& path) {
 RefinementRow RefinementFrom(const json& value, const std::string& path) {
   if (!value.is_object()) Fail(path, "an object (the refinement)");
   RefinementRow r;
-  r.T_world_laser = RequiredPose(value, "T_world_laser", path);
-  r.converged = OptionalBool(value, "converged", path);
-  if (const auto iterations = OptionalNumber(value, "iterations", path))
+  r.T_world_laser = RequiredPose(value, keys::kTWorldLaser, path);
+  r.converged = OptionalBool(value, keys::kConverged, path);
+  if (const auto iterations = OptionalNumber(value, keys::kIterations, path))
     r.iterations = static_cast<int>(*iterations);
-  r.before = RequiredTest(value, "likelihood_test_before", path);
-  r.after = RequiredTest(value, "likelihood_test_after", path);
-  r.distance_expect_value_before_m = DistanceExpectValue(value, "likelihood_distance_before", path);
-  r.distance_expect_value_after_m = DistanceExpectValue(value, "likelihood_distance_after", path);
-  r.degenerate = OptionalBool(value, "degenerate", path);
-  r.degeneracy = OptionalString(value, "degeneracy", path);
-  r.time_s = OptionalNumber(value, "time_s", path).value_or(0.0);
+  r.before = RequiredTest(value, keys::kLikelihoodTestBefore, path);
+  r.after = RequiredTest(value, keys::kLikelihoodTestAfter, path);
+  r.distance_expect_value_before_m =
+      DistanceExpectValue(value, keys::kLikelihoodDistanceBefore, path);
+  r.distance_expect_value_after_m =
+      DistanceExpectValue(value, keys::kLikelihoodDistanceAfter, path);
+  r.degenerate = OptionalBool(value, keys::kDegenerate, path);
+  r.degeneracy = OptionalString(value, keys::kDegeneracy, path);
+  r.time_s = OptionalNumber(value, keys::kTimeS, path).value_or(0.0);
   return r;
 }
 
 RefinedCandidateRow RefinedCandidateFrom(const json& value, const std::string& path) {
   if (!value.is_object()) Fail(path, "an object (a refined candidate)");
   RefinedCandidateRow r;
-  r.candidate = RequiredString(value, "candidate", path);
-  r.T_world_laser = RequiredPose(value, "T_world_laser", path);
-  r.cost = OptionalNumber(value, "cost", path);
-  r.expect_value_m = OptionalNumber(value, "expect_value_m", path);
-  r.match_ratio = OptionalNumber(value, "match_ratio", path);
+  r.candidate = RequiredString(value, keys::kCandidate, path);
+  r.T_world_laser = RequiredPose(value, keys::kTWorldLaser, path);
+  r.cost = OptionalNumber(value, keys::kCost, path);
+  r.expect_value_m = OptionalNumber(value, keys::kExpectValueM, path);
+  r.match_ratio = OptionalNumber(value, keys::kMatchRatio, path);
   ReadVerdict(value, path, r);
   return r;
 }
@@ -183,44 +188,44 @@ RefinedCandidateRow RefinedCandidateFrom(const json& value, const std::string& p
 IterationRow RowFrom(const json& record) {
   if (!record.is_object()) Fail("the record", "a JSON object");
   IterationRow row;
-  const json& index = Required(record, "index", "", "a whole number");
-  if (!index.is_number_unsigned()) Fail("index", "a whole number");
+  const json& index = Required(record, keys::kIndex, "", "a whole number");
+  if (!index.is_number_unsigned()) Fail(keys::kIndex, "a whole number");
   row.index = index.get<std::size_t>();
-  row.timestamp_s = RequiredNumber(record, "timestamp_s", "");
-  row.origin = OptionalString(record, "origin", "");
-  row.skipped = RequiredBool(record, "skipped", "");
-  row.first = OptionalBool(record, "first", "");
-  row.prediction = RequiredPose(record, "prediction", "");
-  row.T_world_robot = RequiredPose(record, "T_world_robot", "");
-  row.validated = RequiredBool(record, "validated", "");
-  row.reason = OptionalString(record, "reason", "");
-  row.inserted = OptionalBool(record, "inserted", "");
-  if (const auto points = OptionalNumber(record, "map_points", ""))
+  row.timestamp_s = RequiredNumber(record, keys::kTimestampS, "");
+  row.origin = OptionalString(record, keys::kOrigin, "");
+  row.skipped = RequiredBool(record, keys::kSkipped, "");
+  row.first = OptionalBool(record, keys::kFirst, "");
+  row.prediction = RequiredPose(record, keys::kPrediction, "");
+  row.T_world_robot = RequiredPose(record, keys::kTWorldRobot, "");
+  row.validated = RequiredBool(record, keys::kValidated, "");
+  row.reason = OptionalString(record, keys::kReason, "");
+  row.inserted = OptionalBool(record, keys::kInserted, "");
+  if (const auto points = OptionalNumber(record, keys::kMapPoints, ""))
     row.map_points = static_cast<std::size_t>(*points);
-  if (const auto it = record.find("timings_ms"); it != record.end() && it->is_object()) {
-    row.evaluate_ms = OptionalNumber(*it, "evaluate", "timings_ms").value_or(0.0);
-    row.refine_ms = OptionalNumber(*it, "refine", "timings_ms").value_or(0.0);
-    row.insert_ms = OptionalNumber(*it, "insert", "timings_ms").value_or(0.0);
-    row.total_ms = OptionalNumber(*it, "total", "timings_ms").value_or(0.0);
+  if (const auto it = record.find(keys::kTimingsMs); it != record.end() && it->is_object()) {
+    row.evaluate_ms = OptionalNumber(*it, keys::kEvaluate, keys::kTimingsMs).value_or(0.0);
+    row.refine_ms = OptionalNumber(*it, keys::kRefine, keys::kTimingsMs).value_or(0.0);
+    row.insert_ms = OptionalNumber(*it, keys::kInsert, keys::kTimingsMs).value_or(0.0);
+    row.total_ms = OptionalNumber(*it, keys::kTotal, keys::kTimingsMs).value_or(0.0);
   }
-  if (record.contains("candidates")) {
-    const json& candidates = RequiredArray(record, "candidates", "", "an array of candidates");
+  if (record.contains(keys::kCandidates)) {
+    const json& candidates = RequiredArray(record, keys::kCandidates, "", "an array of candidates");
     for (std::size_t i = 0; i < candidates.size(); ++i)
       row.candidates.push_back(
           CandidateFrom(candidates[i], "candidates[" + std::to_string(i) + "]"));
   }
-  row.chosen = OptionalString(record, "chosen", "");
-  if (record.contains("problems")) {
-    for (const json& problem : RequiredArray(record, "problems", "", "an array of strings")) {
-      if (!problem.is_string()) Fail("problems", "an array of strings");
+  row.chosen = OptionalString(record, keys::kChosen, "");
+  if (record.contains(keys::kProblems)) {
+    for (const json& problem : RequiredArray(record, keys::kProblems, "", "an array of strings")) {
+      if (!problem.is_string()) Fail(keys::kProblems, "an array of strings");
       row.problems.push_back(problem.get<std::string>());
     }
   }
-  if (const auto it = record.find("refinement"); it != record.end() && !it->is_null())
-    row.refinement = RefinementFrom(*it, "refinement");
-  if (record.contains("refined_candidates")) {
+  if (const auto it = record.find(keys::kRefinement); it != record.end() && !it->is_null())
+    row.refinement = RefinementFrom(*it, keys::kRefinement);
+  if (record.contains(keys::kRefinedCandidates)) {
     const json& refined =
-        RequiredArray(record, "refined_candidates", "", "an array of refined candidates");
+        RequiredArray(record, keys::kRefinedCandidates, "", "an array of refined candidates");
     for (std::size_t i = 0; i < refined.size(); ++i)
       row.refined_candidates.push_back(
           RefinedCandidateFrom(refined[i], "refined_candidates[" + std::to_string(i) + "]"));

@@ -1,0 +1,69 @@
+#pragma once
+// The iteration record's file format, defined once: every JSON key of a line of iterations.jsonl
+// (and of the candidate reports of `scanloc test --json` and `refine --json`, which share its
+// objects). The writer (run_folder, candidate_report) and the report's reader (run_records) both
+// spell the keys through these names, so the two cannot drift apart.
+
+namespace scanloc::record_keys {
+
+inline constexpr const char* kBest = "best";
+inline constexpr const char* kCandidate = "candidate";
+inline constexpr const char* kCandidates = "candidates";
+inline constexpr const char* kCarved = "carved";
+inline constexpr const char* kChosen = "chosen";
+inline constexpr const char* kConverged = "converged";
+inline constexpr const char* kCorrectionFromPredictionMmMmMrad =
+    "correction_from_prediction_mm_mm_mrad";
+inline constexpr const char* kCorrectionMmMmMrad = "correction_mm_mm_mrad";
+inline constexpr const char* kCost = "cost";
+inline constexpr const char* kCostM2 = "cost_m2";
+inline constexpr const char* kCovariance = "covariance";
+inline constexpr const char* kDegeneracy = "degeneracy";
+inline constexpr const char* kDegenerate = "degenerate";
+inline constexpr const char* kDispersionM2 = "dispersion_m2";
+inline constexpr const char* kEvaluate = "evaluate";
+inline constexpr const char* kExpectValueM = "expect_value_m";
+inline constexpr const char* kFirst = "first";
+inline constexpr const char* kFlagged = "flagged";
+inline constexpr const char* kHistogram = "histogram";
+inline constexpr const char* kIndex = "index";
+inline constexpr const char* kInitialTWorldRobot = "initial_T_world_robot";
+inline constexpr const char* kInsert = "insert";
+inline constexpr const char* kInserted = "inserted";
+inline constexpr const char* kIterations = "iterations";
+inline constexpr const char* kLabel = "label";
+inline constexpr const char* kLikelihoodDistance = "likelihood_distance";
+inline constexpr const char* kLikelihoodDistanceAfter = "likelihood_distance_after";
+inline constexpr const char* kLikelihoodDistanceBefore = "likelihood_distance_before";
+inline constexpr const char* kLikelihoodTest = "likelihood_test";
+inline constexpr const char* kLikelihoodTestAfter = "likelihood_test_after";
+inline constexpr const char* kLikelihoodTestBefore = "likelihood_test_before";
+inline constexpr const char* kMapPoints = "map_points";
+inline constexpr const char* kMatchPairs = "match_pairs";
+inline constexpr const char* kMatchRatio = "match_ratio";
+inline constexpr const char* kOrigin = "origin";
+inline constexpr const char* kPrediction = "prediction";
+inline constexpr const char* kProblems = "problems";
+inline constexpr const char* kRank = "rank";
+inline constexpr const char* kReason = "reason";
+inline constexpr const char* kRefine = "refine";
+inline constexpr const char* kRefinedCandidates = "refined_candidates";
+inline constexpr const char* kRefinedTWorldRobot = "refined_T_world_robot";
+inline constexpr const char* kRefinement = "refinement";
+inline constexpr const char* kSkipped = "skipped";
+inline constexpr const char* kSqrtDispersionM = "sqrt_dispersion_m";
+inline constexpr const char* kTWorldLaser = "T_world_laser";
+inline constexpr const char* kTWorldRobot = "T_world_robot";
+inline constexpr const char* kTimeS = "time_s";
+inline constexpr const char* kTimestampS = "timestamp_s";
+inline constexpr const char* kTimingsMs = "timings_ms";
+inline constexpr const char* kTotal = "total";
+inline constexpr const char* kValid = "valid";
+inline constexpr const char* kValidPairs = "valid_pairs";
+inline constexpr const char* kValidated = "validated";
+inline constexpr const char* kWeightedPairs = "weighted_pairs";
+inline constexpr const char* kXM = "x_m";
+inline constexpr const char* kYM = "y_m";
+inline constexpr const char* kYawRad = "yaw_rad";
+
+}  // namespace scanloc::record_keys

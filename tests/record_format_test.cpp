@@ -1,0 +1,108 @@
+// The iteration record format: what the session writes (ToJson(IterationRecord)) the report reads
+// back (IterationRowFromJson) field for field, on records of a real session.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "scanloc/io/run_folder.hpp"
+#include "scanloc/io/sequence_sources.hpp"
+#include "scanloc/report/run_records.hpp"
+#include "test_support.hpp"
+
+namespace scanloc {
+namespace {
+
+void ExpectPose(const Pose2D& read, const Pose2D& written) {
+  EXPECT_DOUBLE_EQ(read.x_m, written.x_m);
+  EXPECT_DOUBLE_EQ(read.y_m, written.y_m);
+  EXPECT_DOUBLE_EQ(read.yaw_rad, written.yaw_rad);
+}
+
+void ExpectTest(const LikelihoodTestResult& read, const LikelihoodTestResult& written) {
+  EXPECT_EQ(read.valid_pairs, written.valid_pairs);
+  EXPECT_EQ(read.match_pairs, written.match_pairs);
+  EXPECT_DOUBLE_EQ(read.expect_value_m, written.expect_value_m);
+  EXPECT_DOUBLE_EQ(read.dispersion_m2, written.dispersion_m2);
+  EXPECT_EQ(read.histogram, written.histogram);
+}
+
+void ExpectCandidates(const IterationRow& row, const LocalisationResult& localisation) {
+  ASSERT_EQ(row.candidates.size(), localisation.evaluated.size());
+  for (std::size_t i = 0; i < row.candidates.size(); ++i) {
+    const CandidateRow& read = row.candidates[i];
+    const RankedCandidate& written = localisation.evaluated[i];
+    EXPECT_EQ(read.label, written.candidate.label);
+    ExpectPose(read.T_world_robot, written.candidate.T_world_robot);
+    ExpectPose(read.T_world_laser.value(), written.T_world_laser);
+    ExpectTest(read.test, written.test);
+    EXPECT_DOUBLE_EQ(read.distance_expect_value_m.value(), written.distance.expect_value_m);
+    EXPECT_DOUBLE_EQ(read.cost.value(), written.cost);
+    EXPECT_EQ(read.valid, written.verdict == Verdict::kValid);
+    EXPECT_EQ(read.reason, ToString(written.verdict));
+    EXPECT_EQ(read.rank, written.rank);
+  }
+  EXPECT_EQ(row.problems, localisation.problems);
+}
+
+void ExpectRefinements(const IterationRow& row, const IterationRecord& record) {
+  const RankedCandidate* kept = record.Kept();
+  ASSERT_EQ(row.refinement.has_value(), kept != nullptr);
+  if (!kept) return;
+  EXPECT_EQ(row.chosen, kept->candidate.label);
+  ExpectPose(row.refinement->T_world_laser, kept->refinement->T_world_laser);
+  EXPECT_EQ(row.refinement->converged, kept->refinement->converged);
+  EXPECT_EQ(row.refinement->iterations, kept->refinement->iterations);
+  ExpectTest(row.refinement->before, kept->refinement->test_before);
+  ExpectTest(row.refinement->after, kept->refinement->test_after);
+  const std::vector<RankedCandidate>& refined = record.localisation->refined;
+  ASSERT_EQ(row.refined_candidates.size(), refined.size());
+  for (std::size_t i = 0; i < refined.size(); ++i) {
+    EXPECT_EQ(row.refined_candidates[i].candidate, refined[i].candidate.label);
+    ExpectPose(row.refined_candidates[i].T_world_laser, refined[i].T_world_laser);
+    EXPECT_DOUBLE_EQ(row.refined_candidates[i].cost.value(), refined[i].cost);
+    EXPECT_EQ(row.refined_candidates[i].rank, refined[i].rank);
+    EXPECT_EQ(row.refined_candidates[i].valid, refined[i].verdict == Verdict::kValid);
+  }
+}
+
+TEST(RecordFormat, WhatTheSessionWritesTheReportReadsBackFieldForField) {
+  SequenceFileSource source(std::string(SCANLOC_SOURCE_DIR) +
+                            "/datasets/classroom/classroom.seq.jsonl");
+  SessionConfig config;
+  config.session.initial_pose = {1.126, 3.112, 0.0463};
+  Session session(
+      config, source.mounting(),
+      ReadLineMap(std::string(SCANLOC_SOURCE_DIR) + "/datasets/classroom/classroom.lines"),
+      PointMap{});
+  Iteration iteration;
+  int localised = 0, refined = 0;
+  for (int i = 0; i < 12 && source.Next(iteration); ++i) {
+    const IterationRecord record = session.Process(iteration);
+    const IterationRow row = IterationRowFromJson(ToJson(record).dump());
+    SCOPED_TRACE("iteration " + std::to_string(i));
+    EXPECT_EQ(row.index, record.index);
+    EXPECT_DOUBLE_EQ(row.timestamp_s, record.timestamp_s);
+    EXPECT_EQ(row.origin, record.origin);
+    EXPECT_EQ(row.skipped, record.skipped);
+    EXPECT_EQ(row.first, record.first);
+    ExpectPose(row.prediction, record.prediction);
+    ExpectPose(row.T_world_robot, record.T_world_robot);
+    EXPECT_EQ(row.validated, record.validated);
+    EXPECT_EQ(row.reason, ToString(record.verdict));
+    EXPECT_EQ(row.inserted, record.inserted);
+    EXPECT_EQ(row.map_points, record.map_points);
+    EXPECT_NEAR(row.total_ms, 1e3 * record.total_s, 1e-9);
+    if (record.localisation) {
+      ++localised;
+      ExpectCandidates(row, *record.localisation);
+    }
+    refined += record.Kept() != nullptr;
+    ExpectRefinements(row, record);
+  }
+  EXPECT_GE(localised, 10);  // the records compared carry candidates and refinements
+  EXPECT_GE(refined, 10);
+}
+
+}  // namespace
+}  // namespace scanloc
