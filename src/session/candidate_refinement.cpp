@@ -13,8 +13,8 @@ CandidateRefinementResult RefineCandidates(const MapView& map, const LaserScan& 
   for (const auto& candidate : candidates) {
     RefinedCandidate refined;
     refined.candidate = candidate;
-    refined.refinement =
-        Refine(map, scan, mounting.LaserPose(candidate.T_world_robot), scoring, refiner);
+    refined.refinement = Refine(map, scan, mounting.LaserPose(candidate.T_world_robot), scoring,
+                                validation.alpha_m, refiner);
     refined.T_world_robot = mounting.RobotPose(refined.refinement.T_world_laser);
     tests.push_back(refined.refinement.test_after);
     result.candidates.push_back(refined);

@@ -21,7 +21,6 @@ void SessionOptions::Validate() const {
     if (!ok) throw std::invalid_argument(std::string("SessionOptions: ") + what);
   };
   require(heading_spread_rad >= 0.0 && heading_spread_rad < M_PI, "heading_spread_rad in [0, π)");
-  require(max_expect_value_m > 0.0, "max_expect_value_m must be > 0");
   require(max_refined_candidates >= 1, "max_refined_candidates must be >= 1");
   require(heading_step_rad > 0.0, "heading_step_rad must be positive");
   require(heading_candidates_min_turn_rad >= 0.0, "heading_candidates_min_turn_rad must be >= 0");
@@ -49,7 +48,6 @@ Session::Session(SessionOptions options, ScoringOptions scoring, ValidationOptio
       line_map_(std::move(line_map)),
       point_map_(std::move(point_map)) {
   options_.Validate();
-  validation_.max_expect_value_m = options_.max_expect_value_m;
   validation_.Validate();
   scoring_.test.Validate();
   scoring_.distance.Validate();
@@ -148,7 +146,8 @@ IterationRecord Session::Process(const Iteration& iteration) {
       const CandidateEvaluation& candidate = record.candidates.candidates[i];
       IterationRecord::Refined refined;
       refined.candidate = i;
-      refined.refinement = Refine(map, iteration.scan, candidate.T_world_laser, scoring_, refiner);
+      refined.refinement = Refine(map, iteration.scan, candidate.T_world_laser, scoring_,
+                                  validation_.alpha_m, refiner);
       refined.refinement.test_before = candidate.test;
       refined.refinement.distance_before = candidate.distance;
       tests.push_back(refined.refinement.test_after);
