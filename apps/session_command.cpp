@@ -83,9 +83,9 @@ void RegisterSessionCommand(CLI::App& app) {
       config.session.initial_pose = {a->initial_pose[0], a->initial_pose[1], a->initial_pose[2]};
       config.session.Validate();
     }
-    CarmenOptions carmen;
-    carmen.laser_offset_m = a->laser_offset_m;
-    carmen.repair_reversed_odometry = !a->raw_odometry;
+    CarmenOptions carmen = config.log;  // --laser-offset and --raw-odometry override it
+    if (a->laser_offset_m) carmen.laser_offset_m = a->laser_offset_m;
+    if (a->raw_odometry) carmen.repair_reversed_odometry = false;
     auto source = OpenIterationSource(a->log_path, carmen);
     LineMap lines = a->line_map_path.empty() ? LineMap{} : ReadLineMap(a->line_map_path);
     PointMap points = a->point_map_path.empty()
@@ -107,12 +107,13 @@ void RegisterSessionCommand(CLI::App& app) {
     while (!g_interrupted && wanted() && source->Next(iteration)) {
       if (!session) {
         // The mounting is final once the first scan was read (CARMEN's PARAM precedes it):
-        // --laser-offset, else the config's when it sets one, else the log's.
+        // --laser-offset or log.laser_offset_m, else the config's mounting when it sets one, else
+        // the log's PARAM.
         const Pose2D& configured = config.mounting.T_robot_laser;
         const bool config_sets_mounting =
             configured.x_m != 0.0 || configured.y_m != 0.0 || configured.yaw_rad != 0.0;
         const LaserMounting mounting =
-            a->laser_offset_m || !config_sets_mounting ? source->mounting() : config.mounting;
+            carmen.laser_offset_m || !config_sets_mounting ? source->mounting() : config.mounting;
         config.mounting = mounting;
         session = std::make_unique<Session>(config.session, config.scoring, config.validation,
                                             config.refiner, mounting, std::move(lines),
