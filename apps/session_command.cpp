@@ -81,7 +81,7 @@ void RegisterSessionCommand(CLI::App& app) {
     Config config = a->config.Build();
     if (!a->initial_pose.empty()) {
       config.session.initial_pose = {a->initial_pose[0], a->initial_pose[1], a->initial_pose[2]};
-      config.session.Validate();
+      config.Validate();  // the ranges of the config, e.g. |yaw| ≤ 2π
     }
     CarmenOptions carmen = config.log;  // --laser-offset and --raw-odometry override it
     if (a->laser_offset_m) carmen.laser_offset_m = a->laser_offset_m;

@@ -188,6 +188,12 @@ TEST_F(CliTest, SetOfANumberBeyondADoubleIsRefusedNamingTheKey) {
       "likelihood_test.slot_width_m");
 }
 
+TEST_F(CliTest, SessionRefusesAnAbsurdInitialHeadingNamingTheOption) {
+  ExpectCleanFailure(Run({"session", "--log", kClassroom + "/classroom.seq.jsonl", "--out",
+                          dir_ + "/run", "--quiet", "--initial-pose", "0", "0", "1e20"}),
+                     "session.initial_pose");
+}
+
 TEST_F(CliTest, OptionsCommandListsEveryKey) {
   const RunResult r = Run({"options"});
   ASSERT_TRUE(r.exited && r.exit_code == 0) << r;
