@@ -118,6 +118,13 @@ TEST(Config, UnknownKeysAreRefusedWithTheirPath) {
   EXPECT_TRUE(Contains(top, "'likelihood_tset'")) << top;
 }
 
+// A dotted key would match a declared path, yet JSON nests sections as objects: refused, not
+// ignored.
+TEST(Config, DottedKeyIsRefusedRatherThanIgnored) {
+  const std::string message = ApplyJsonError(json{{"likelihood_test.slot_count", 30}});
+  EXPECT_TRUE(Contains(message, "'likelihood_test.slot_count'")) << message;
+}
+
 TEST(Config, WrongTypesAreRefusedWithTheKeyPath) {
   const std::string count = ApplyJsonError(json{{"likelihood_test", {{"slot_count", "twenty"}}}});
   EXPECT_TRUE(Contains(count, "config.likelihood_test.slot_count")) << count;

@@ -105,6 +105,9 @@ void RefuseUnknownKeys(const json& object, const std::string& prefix) {
       if (path == moved.old_key)
         throw std::runtime_error("config." + path + ": this option moved to " + moved.new_key +
                                  "; set that instead");
+    if (key.find('.') != std::string::npos)  // "a.b" would pass as a path, then be ignored
+      throw std::runtime_error(where + ": unknown key '" + key +
+                               "' (sections nest as objects: {\"a\": {\"b\": ...}})");
     if (declared.keys.count(path)) continue;
     if (!declared.sections.count(path))
       throw std::runtime_error(where + ": unknown key '" + key + "'");
