@@ -46,7 +46,8 @@ void ConfigArguments::Register(CLI::App& command) {
   command.add_option("--config", config_path, "configuration file (JSON)")
       ->check(CLI::ExistingFile);
   command.add_option("--set", sets,
-                     "override one option: section.key=value, e.g. likelihood_test.slot_count=30");
+                     "override one option: section.key=value, e.g. likelihood_test.slot_count=30 "
+                     "(`scanloc options` lists every key)");
   command.add_option("--min-match-ratio", min_match_ratio, "rule 1 MinMatchRatio (default 0.3)");
   command.add_option("--match-threshold", match_threshold_m, "T_Map in metres (default 0.5)");
 }
@@ -61,6 +62,8 @@ Config ConfigArguments::Build() const {
     const std::string text = assignment.substr(equals + 1);
     try {
       value = nlohmann::json::parse(text);
+    } catch (const nlohmann::json::out_of_range& e) {  // a number beyond a double: 1e400
+      throw std::runtime_error("--set " + assignment + ": " + e.what());
     } catch (const nlohmann::json::exception&) {
       value = text;  // a bare word, e.g. kernel=huber
     }

@@ -2,6 +2,7 @@
 
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "commands.hpp"
 #include "common_options.hpp"
@@ -16,7 +17,8 @@ void RegisterRefineCommand(CLI::App& app) {
   struct Arguments {
     MapArguments map;
     ConfigArguments config;
-    std::string scan_path, candidates_path, method = "ceres", incidence = "cosine";
+    std::string scan_path, candidates_path;
+    std::optional<std::string> method, incidence;  // override refinement.method, ….incidence
     std::size_t scan_index = 0;
     bool json = false;
   };
@@ -32,31 +34,34 @@ void RegisterRefineCommand(CLI::App& app) {
   command->add_option("--candidates", a->candidates_path, "'x y theta [label]' per line")
       ->required()
       ->check(CLI::ExistingFile);
-  command->add_option("--method", a->method, "ceres, error-descent or icp")
+  command
+      ->add_option("--method", a->method,
+                   "ceres, error-descent or icp (default: refinement.method, ceres)")
       ->check(CLI::IsMember({"ceres", "error-descent", "icp"}));
   command
       ->add_option("--incidence", a->incidence,
-                   "Ceres residual weighting by incidence: none, cosine or gate")
+                   "Ceres residual weighting by incidence: none, cosine or gate (default: "
+                   "refinement.ceres.incidence, cosine)")
       ->check(CLI::IsMember({"none", "cosine", "gate"}));
   command->add_flag("--json", a->json, "print JSON (with histograms) instead of a table");
   command->final_callback([a] {
-    const Config config = a->config.Build();
+    Config config = a->config.Build();
+    if (a->method) config.refiner.method = ParseRefinementMethod(*a->method);
+    if (a->incidence) config.refiner.ceres.incidence = ParseIncidenceWeighting(*a->incidence);
     const LoadedMaps maps = LoadMaps(a->map, config);
-    const LaserScan scan = LoadScan(a->scan_path, a->scan_index);
+    const LaserScan scan = LoadScan(a->scan_path, a->scan_index, config.log);
     const auto candidates = ReadCandidatesFile(a->candidates_path);
-    RefinerOptions refiner;
-    refiner.method = ParseRefinementMethod(a->method);
-    refiner.ceres.incidence = ParseIncidenceWeighting(a->incidence);
-    refiner.error_descent.alpha_m = config.validation.alpha_m;
     const LocalisationResult result =
         Localise(maps.View(), scan, candidates, config.mounting,
-                 {config.scoring, config.validation, refiner}, RefinePolicy::kAll);
+                 {config.scoring, config.validation, config.refiner}, RefinePolicy::kAll);
+    const std::string method = ToString(config.refiner.method);
     if (a->json) {
       nlohmann::json out = RefinedToJson(result);
-      out["method"] = a->method;
+      out["method"] = method;
+      out["config"] = ToJson(config);
       std::cout << out.dump(2) << '\n';
     } else {
-      std::cout << "method: " << a->method << '\n';
+      std::cout << "method: " << method << '\n';
       PrintRefinementTable(std::cout, result);
     }
   });

@@ -86,11 +86,11 @@ void Run(const Arguments& a) {
   Config config = a.config.Build();
   if (!a.initial_pose.empty()) {
     config.session.initial_pose = {a.initial_pose[0], a.initial_pose[1], a.initial_pose[2]};
-    config.session.Validate();
+    config.Validate();  // the ranges of the config, e.g. |yaw| ≤ 2π
   }
-  CarmenOptions carmen;
-  carmen.laser_offset_m = a.laser_offset_m;
-  carmen.repair_reversed_odometry = !a.raw_odometry;
+  CarmenOptions carmen = config.log;  // --laser-offset and --raw-odometry override it
+  if (a.laser_offset_m) carmen.laser_offset_m = a.laser_offset_m;
+  if (a.raw_odometry) carmen.repair_reversed_odometry = false;
   auto source = OpenIterationSource(a.log_path, carmen);
   LineMap lines = a.line_map_path.empty() ? LineMap{} : ReadLineMap(a.line_map_path);
   PointMap points = a.point_map_path.empty() ? PointMap(config.point_map)
@@ -100,7 +100,7 @@ void Run(const Arguments& a) {
   std::signal(SIGTERM, OnInterrupt);
   const SessionFactory make_session = [&](const IterationSource& from) {
     config.mounting =
-        ChooseMounting(from.mounting(), config.mounting, a.laser_offset_m.has_value());
+        ChooseMounting(from.mounting(), config.mounting, carmen.laser_offset_m.has_value());
     return std::make_unique<Session>(
         SessionConfig{config.session, {config.scoring, config.validation, config.refiner}},
         config.mounting, std::move(lines), std::move(points));

@@ -38,7 +38,7 @@ void RegisterTestCommand(CLI::App& app) {
   command->final_callback([arguments] {
     const Config config = arguments->config.Build();
     const LoadedMaps maps = LoadMaps(arguments->map, config);
-    const LaserScan scan = LoadScan(arguments->scan_path, arguments->scan_index);
+    const LaserScan scan = LoadScan(arguments->scan_path, arguments->scan_index, config.log);
     const auto candidates = ReadCandidatesFile(arguments->candidates_path);
     const LocalisationResult result =
         Localise(maps.View(), scan, candidates, config.mounting,

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "scanloc/io/corrected_scans.hpp"
+#include "scanloc/likelihood/candidate_ranking.hpp"
 #include "scanloc/maps/point_map.hpp"
 #include "scanloc/refinement/refiner.hpp"
 
@@ -147,8 +148,8 @@ int main(int argc, char** argv) {
       for (std::size_t m = 0; m < methods.size(); ++m) {
         Tally& t = tallies[m];
         const auto start = std::chrono::steady_clock::now();
-        const RefinementResult r =
-            Refine(view, tests[i]->scan, starts[i], scoring, methods[m].options);
+        const RefinementResult r = Refine(view, tests[i]->scan, starts[i], scoring,
+                                          ValidationOptions{}.alpha_m, methods[m].options);
         t.times_ms.push_back(
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                 .count());

@@ -15,10 +15,14 @@ LikelihoodTestResult Moments(int nvp, int mp, double ev, double disp) {
 }
 
 TEST(RankCandidates, ChapterTable1KeepsOnlyP0) {
-  // Table 1 of the chapter (NVP 1749): p0 valid; p1 and p2 fail rule 1 or 2; p3 fails rule 2.
+  // Table 1 of the chapter (NVP 1749): p0 valid; p1 and p2 fail rule 1 or 2; p3 fails rule 2,
+  // with the chapter's E_max of 0.05 m.
+  ValidationOptions chapter;
+  chapter.max_expect_value_m = 0.05;
   const auto ranking =
       RankCandidates({Moments(1749, 1458, 0.0289, 0.0019), Moments(1749, 900, 0.0496, 0.0060),
-                      Moments(1749, 676, 0.0414, 0.0050), Moments(1749, 1276, 0.0641, 0.0080)});
+                      Moments(1749, 676, 0.0414, 0.0050), Moments(1749, 1276, 0.0641, 0.0080)},
+                     chapter);
   EXPECT_EQ(ranking.best, 0);
   EXPECT_EQ(ranking.candidates[0].verdict, Verdict::kValid);
   EXPECT_EQ(ranking.candidates[3].verdict, Verdict::kHighExpectValue);
@@ -38,7 +42,10 @@ TEST(RankCandidates, Rule1RejectsLowMatchRatioAndAcceptsAboveIt) {
 }
 
 TEST(RankCandidates, Rule2RejectsHighExpectValueAndAcceptsBelowIt) {
-  const auto r = RankCandidates({Moments(100, 90, 0.05, 0.003), Moments(100, 90, 0.0499, 0.003)});
+  ValidationOptions options;
+  options.max_expect_value_m = 0.05;  // the chapter's E_max
+  const auto r =
+      RankCandidates({Moments(100, 90, 0.05, 0.003), Moments(100, 90, 0.0499, 0.003)}, options);
   EXPECT_EQ(r.candidates[0].verdict, Verdict::kHighExpectValue);
   EXPECT_EQ(r.candidates[1].verdict, Verdict::kValid);
 }

@@ -125,6 +125,84 @@ TEST_F(CliTest, SetSlotCountChangesTheHistogramLength) {
   EXPECT_EQ(out.at("candidates")[0].at("likelihood_test").at("histogram").size(), 30u);
 }
 
+// `scanloc refine` builds its refiner from the configuration: --set reaches the Ceres options.
+// The refined postures are compared (the table's time column differs from run to run anyway).
+TEST_F(CliTest, RefineHonoursSetRefinementOptions) {
+  std::vector<std::string> refine = {"refine", "--map",        kMap,        "--scan",
+                                     kScan,    "--candidates", kCandidates, "--json"};
+  const RunResult defaults = Run(refine);
+  ASSERT_TRUE(defaults.exited && defaults.exit_code == 0) << defaults;
+  refine.insert(refine.end(), {"--set", "refinement.ceres.max_outer_iterations=1"});
+  const RunResult one_step = Run(refine);
+  ASSERT_TRUE(one_step.exited && one_step.exit_code == 0) << one_step;
+  const auto before = nlohmann::json::parse(defaults.out),
+             after = nlohmann::json::parse(one_step.out);
+  EXPECT_EQ(after.at("config").at("refinement").at("ceres").at("max_outer_iterations"), 1);
+  ASSERT_EQ(before.at("candidates").size(), after.at("candidates").size());
+  int changed = 0;
+  for (std::size_t i = 0; i < before.at("candidates").size(); ++i) {
+    const auto& b = before.at("candidates")[i];
+    const auto& a = after.at("candidates")[i];
+    EXPECT_EQ(a.at("refinement").at("iterations"), 1) << i;
+    changed += a.at("refined_T_world_robot") != b.at("refined_T_world_robot");
+  }
+  EXPECT_GT(changed, 0) << "the refined postures are the defaults'";
+}
+
+// The method comes from --config unless --method names one.
+TEST_F(CliTest, RefineTakesItsMethodFromTheConfigFile) {
+  const std::string config =
+      Write("descent.json", R"({"refinement": {"method": "error-descent"}})");
+  const std::vector<std::string> refine = {"refine",       "--map",     kMap,       "--scan", kScan,
+                                           "--candidates", kCandidates, "--config", config};
+  const RunResult from_file = Run(refine);
+  ASSERT_TRUE(from_file.exited && from_file.exit_code == 0) << from_file;
+  EXPECT_TRUE(Contains(from_file.out, "method: error-descent")) << from_file;
+  std::vector<std::string> overridden = refine;
+  overridden.insert(overridden.end(), {"--method", "ceres"});
+  const RunResult from_flag = Run(overridden);
+  ASSERT_TRUE(from_flag.exited && from_flag.exit_code == 0) << from_flag;
+  EXPECT_TRUE(Contains(from_flag.out, "method: ceres")) << from_flag;
+}
+
+TEST_F(CliTest, TinyExpectValueLimitRejectsEveryCandidateByRule2) {
+  const RunResult r =
+      Run(TestJob(kMap, kScan, kCandidates, {"--set", "validation.max_expect_value_m=0.001"}));
+  ASSERT_TRUE(r.exited && r.exit_code == 0) << r;
+  for (const char* label : {"p0", "p1", "p2", "p3"}) {
+    const std::string row = RowOf(r.out, label);
+    EXPECT_TRUE(Contains(row, "rule 2")) << label << ": " << row;
+  }
+  EXPECT_FALSE(Contains(r.out, "best: p")) << r;
+}
+
+TEST_F(CliTest, SetOfTheMovedSessionExpectValueNamesItsNewKey) {
+  ExpectCleanFailure(
+      Run(TestJob(kMap, kScan, kCandidates, {"--set", "session.max_expect_value_m=0.1"})),
+      "validation.max_expect_value_m");
+}
+
+TEST_F(CliTest, SetOfANumberBeyondADoubleIsRefusedNamingTheKey) {
+  ExpectCleanFailure(
+      Run(TestJob(kMap, kScan, kCandidates, {"--set", "likelihood_test.slot_width_m=1e400"})),
+      "likelihood_test.slot_width_m");
+}
+
+TEST_F(CliTest, SessionRefusesAnAbsurdInitialHeadingNamingTheOption) {
+  ExpectCleanFailure(Run({"session", "--log", kClassroom + "/classroom.seq.jsonl", "--out",
+                          dir_ + "/run", "--quiet", "--initial-pose", "0", "0", "1e20"}),
+                     "session.initial_pose");
+}
+
+TEST_F(CliTest, OptionsCommandListsEveryKey) {
+  const RunResult r = Run({"options"});
+  ASSERT_TRUE(r.exited && r.exit_code == 0) << r;
+  for (const char* key : {"likelihood_test.slot_count = 20", "validation.alpha_m = 0.1",
+                          "refinement.icp.point_to_plane = false", "log.repair_reversed_odometry",
+                          "session.initial_pose = [0.0,0.0,0.0]"})
+    EXPECT_TRUE(Contains(r.out, key)) << key << "\n" << r;
+}
+
 TEST_F(CliTest, LineMapWithABadLineFailsNamingFileAndLine) {
   const std::string map = Write("bad.lines", "0 0 1 0\n# comment\n0 0 x 1\n");
   ExpectCleanFailure(Run(TestJob(map, kScan, kCandidates)), map + ":3:");

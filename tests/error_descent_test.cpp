@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "scanloc/likelihood/candidate_ranking.hpp"
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/maps/point_map.hpp"
 #include "test_support.hpp"
@@ -17,6 +18,8 @@ namespace {
 
 constexpr double kNoiseSigmaM = 0.02;  // the Acuity's range error
 constexpr unsigned kNoiseSeed = 20240611;
+// (3.11) α, the validation rules' own (ValidationOptions::alpha_m), which Error Descent receives.
+const double kAlpha = ValidationOptions{}.alpha_m;
 
 // The "real" scan: the map seen from the true posture over 720 beams, optionally with noise.
 LaserScan RealScan(const LineMap& map, const Pose2D& T_world_laser_true, double sigma_m) {
@@ -44,7 +47,7 @@ TEST(ErrorDescent, RecoversTruePoseWithinFiveMillimetresFromSmallOffsetsNoiseFre
                                Pose2D(0.0523, 0.0109, 0.0213), Pose2D(-0.0196, -0.0481, -0.0202)}) {
     const Pose2D initial(kTrue.x_m + offset.x_m, kTrue.y_m + offset.y_m,
                          kTrue.yaw_rad + offset.yaw_rad);
-    const RefinementResult r = RefineErrorDescent(map, scan, initial, ScoringOptions{});
+    const RefinementResult r = RefineErrorDescent(map, scan, initial, ScoringOptions{}, kAlpha);
     SCOPED_TRACE("offset " + ::testing::PrintToString(offset.x_m) + ", " +
                  ::testing::PrintToString(offset.y_m) + ", " +
                  ::testing::PrintToString(offset.yaw_rad) + ": " + Report(r));
@@ -63,8 +66,8 @@ TEST(ErrorDescent, AxisMovesOnlyAlsoRecoverTruePose) {
   ErrorDescentOptions options;
   options.diagonal_moves = false;
   const Pose2D initial(kTrue.x_m + 0.0317, kTrue.y_m - 0.0213, kTrue.yaw_rad + 0.0191);
-  const RefinementResult r =
-      RefineErrorDescent(MapView{&lines, nullptr}, scan, initial, ScoringOptions{}, options);
+  const RefinementResult r = RefineErrorDescent(MapView{&lines, nullptr}, scan, initial,
+                                                ScoringOptions{}, kAlpha, options);
   SCOPED_TRACE(Report(r));
   EXPECT_TRUE(r.converged);
   EXPECT_NEAR(r.T_world_laser.x_m, kTrue.x_m, 0.005);
@@ -77,7 +80,7 @@ TEST(ErrorDescent, ExpectValueNeverIncreasesAndPoseImprovesWithRangeNoise) {
   const LaserScan scan = RealScan(lines, kTrue, kNoiseSigmaM);
   const Pose2D initial(kTrue.x_m - 0.0388, kTrue.y_m + 0.0291, kTrue.yaw_rad - 0.0147);
   const RefinementResult r =
-      RefineErrorDescent(MapView{&lines, nullptr}, scan, initial, ScoringOptions{});
+      RefineErrorDescent(MapView{&lines, nullptr}, scan, initial, ScoringOptions{}, kAlpha);
   SCOPED_TRACE(Report(r));
   EXPECT_TRUE(r.converged);
   EXPECT_LE(r.test_after.expect_value_m, r.test_before.expect_value_m);
@@ -93,7 +96,7 @@ TEST(ErrorDescent, RecoversTruePoseOnPointMapSampledFromLines) {
   const LaserScan scan = RealScan(lines, kTrue, 0.0);
   const Pose2D initial(kTrue.x_m + 0.0317, kTrue.y_m + 0.0213, kTrue.yaw_rad - 0.0147);
   const RefinementResult r =
-      RefineErrorDescent(MapView{nullptr, &points}, scan, initial, ScoringOptions{});
+      RefineErrorDescent(MapView{nullptr, &points}, scan, initial, ScoringOptions{}, kAlpha);
   SCOPED_TRACE(Report(r));
   EXPECT_TRUE(r.converged);
   EXPECT_LE(r.test_after.expect_value_m, r.test_before.expect_value_m);
@@ -108,14 +111,15 @@ TEST(ErrorDescent, ScoresEveryStencilOncePerLevelWhenStartingAtTheOptimum) {
   const LineMap lines = testing::SmallRoomWithL();
   const LaserScan scan = RealScan(lines, kTrue, 0.0);
   const MapView map{&lines, nullptr};
-  const RefinementResult diagonal = RefineErrorDescent(map, scan, kTrue, ScoringOptions{});
+  const RefinementResult diagonal = RefineErrorDescent(map, scan, kTrue, ScoringOptions{}, kAlpha);
   EXPECT_EQ(diagonal.iterations, 1 + 26 * 7);
   EXPECT_TRUE(diagonal.converged);
   EXPECT_DOUBLE_EQ(diagonal.T_world_laser.x_m, kTrue.x_m);
   EXPECT_DOUBLE_EQ(diagonal.T_world_laser.yaw_rad, kTrue.yaw_rad);
   ErrorDescentOptions axes;
   axes.diagonal_moves = false;
-  EXPECT_EQ(RefineErrorDescent(map, scan, kTrue, ScoringOptions{}, axes).iterations, 1 + 6 * 7);
+  EXPECT_EQ(RefineErrorDescent(map, scan, kTrue, ScoringOptions{}, kAlpha, axes).iterations,
+            1 + 6 * 7);
 }
 
 TEST(ErrorDescent, MoveBudgetExhaustedIsReportedAsNotConverged) {
@@ -126,8 +130,8 @@ TEST(ErrorDescent, MoveBudgetExhaustedIsReportedAsNotConverged) {
   options.step_levels = 1;
   // 0.2 m away with 0.04 m steps needs several moves.
   const Pose2D initial(kTrue.x_m + 0.2, kTrue.y_m, kTrue.yaw_rad);
-  const RefinementResult r =
-      RefineErrorDescent(MapView{&lines, nullptr}, scan, initial, ScoringOptions{}, options);
+  const RefinementResult r = RefineErrorDescent(MapView{&lines, nullptr}, scan, initial,
+                                                ScoringOptions{}, kAlpha, options);
   EXPECT_FALSE(r.converged);
   EXPECT_NEAR(r.T_world_laser.x_m, initial.x_m - 0.04, 1e-12);
 }
@@ -139,14 +143,14 @@ TEST(ErrorDescent, EmptyMapOrAllInvalidScanGivesInitialPoseNotConverged) {
   const Pose2D initial(kTrue.x_m + 0.03, kTrue.y_m, kTrue.yaw_rad);
 
   const RefinementResult no_map =
-      RefineErrorDescent(MapView{&empty, nullptr}, scan, initial, ScoringOptions{});
+      RefineErrorDescent(MapView{&empty, nullptr}, scan, initial, ScoringOptions{}, kAlpha);
   EXPECT_FALSE(no_map.converged);
   EXPECT_EQ(no_map.test_after.valid_pairs, 0);
   EXPECT_DOUBLE_EQ(no_map.T_world_laser.x_m, initial.x_m);
 
   for (double& range : scan.ranges_m) range = -1.0;
   const RefinementResult no_data =
-      RefineErrorDescent(MapView{&lines, nullptr}, scan, initial, ScoringOptions{});
+      RefineErrorDescent(MapView{&lines, nullptr}, scan, initial, ScoringOptions{}, kAlpha);
   EXPECT_FALSE(no_data.converged);
   EXPECT_DOUBLE_EQ(no_data.T_world_laser.x_m, initial.x_m);
 }
@@ -157,7 +161,7 @@ TEST(ErrorDescent, InvalidOptionsThrowWithMessage) {
   const MapView map{&lines, nullptr};
   auto expect_throw = [&](ErrorDescentOptions options, const std::string& field) {
     try {
-      RefineErrorDescent(map, scan, kTrue, ScoringOptions{}, options);
+      RefineErrorDescent(map, scan, kTrue, ScoringOptions{}, kAlpha, options);
       ADD_FAILURE() << "no exception for " << field;
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
@@ -178,10 +182,10 @@ TEST(ErrorDescent, InvalidOptionsThrowWithMessage) {
   o = {};
   o.max_moves_per_level = 0;
   expect_throw(o, "max_moves_per_level");
-  o = {};
-  o.alpha_m = std::nan("");
-  expect_throw(o, "alpha_m");
-  EXPECT_THROW(RefineErrorDescent(map, scan, Pose2D(std::nan(""), 0, 0), ScoringOptions{}),
+  EXPECT_THROW(RefineErrorDescent(map, scan, kTrue, ScoringOptions{}, std::nan("")),
+               std::invalid_argument);
+  EXPECT_THROW(RefineErrorDescent(map, scan, kTrue, ScoringOptions{}, -0.1), std::invalid_argument);
+  EXPECT_THROW(RefineErrorDescent(map, scan, Pose2D(std::nan(""), 0, 0), ScoringOptions{}, kAlpha),
                std::invalid_argument);
 }
 

@@ -19,6 +19,8 @@ class CarvingTest : public ::testing::Test {
   Pose2D centre_{5.0, 4.0, 0.0};
   LaserScan scan_ = testing::NoisyScan(room_, centre_, 720, 0.0, 1);
   PointMap map_;
+  // A fixed margin without growth with the range: the cases below are laid out for it.
+  static constexpr double kMargin = 0.2, kMarginPerM = 0.0;
 };
 
 TEST_F(CarvingTest, APointSeenThroughTwiceMoreThanSeenIsRemoved) {
@@ -26,9 +28,10 @@ TEST_F(CarvingTest, APointSeenThroughTwiceMoreThanSeenIsRemoved) {
   const std::size_t walls = map_.live_size();
   // A person who stood 2 m east of the robot once: one sample.
   ASSERT_TRUE(map_.Insert(Eigen::Vector2d(7.0, 4.0), 0.05));
-  EXPECT_EQ(map_.CarveFreeSpace(scan_, centre_), 0u);  // one miss, one sample: kept
+  EXPECT_EQ(map_.CarveFreeSpace(scan_, centre_, kMargin, kMarginPerM),
+            0u);  // one miss, one sample: kept
   EXPECT_EQ(map_.live_size(), walls + 1);
-  EXPECT_EQ(map_.CarveFreeSpace(scan_, centre_), 1u);  // two misses: removed
+  EXPECT_EQ(map_.CarveFreeSpace(scan_, centre_, kMargin, kMarginPerM), 1u);  // two misses: removed
   EXPECT_EQ(map_.live_size(), walls);
   EXPECT_EQ(map_.size(), walls + 1);  // its slot stays, dead
   EXPECT_FALSE(map_.alive(walls));
@@ -47,7 +50,7 @@ TEST_F(CarvingTest, WallsAndPointsNearTheReturnAreNeverCarved) {
   map_.InsertScan(scan_, centre_);
   map_.Insert(Eigen::Vector2d(9.9, 4.0), 0.05);  // 0.1 m in front of the east wall: within margin
   const std::size_t before = map_.live_size();
-  for (int i = 0; i < 5; ++i) EXPECT_EQ(map_.CarveFreeSpace(scan_, centre_, 0.2), 0u);
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(map_.CarveFreeSpace(scan_, centre_, 0.2, 0.0), 0u);
   EXPECT_EQ(map_.live_size(), before);
 }
 
@@ -70,8 +73,8 @@ TEST_F(CarvingTest, TheMarginGrowsWithTheRangeOfTheReturn) {
 TEST_F(CarvingTest, ACarvedCellTakesNewSamplesAsANewPoint) {
   map_.InsertScan(scan_, centre_);
   map_.Insert(Eigen::Vector2d(7.0, 4.0), 0.05);
-  map_.CarveFreeSpace(scan_, centre_);
-  map_.CarveFreeSpace(scan_, centre_);
+  map_.CarveFreeSpace(scan_, centre_, kMargin, kMarginPerM);
+  map_.CarveFreeSpace(scan_, centre_, kMargin, kMarginPerM);
   const std::size_t live = map_.live_size();
   // Something is there again: it must come back rather than merge into the dead point.
   EXPECT_TRUE(map_.Insert(Eigen::Vector2d(7.01, 4.0), 0.05));
@@ -83,7 +86,8 @@ TEST_F(CarvingTest, BeamsWithoutEchoCarveNothing) {
   map_.Insert(Eigen::Vector2d(7.0, 4.0), 0.05);
   LaserScan blind = scan_;
   for (double& r : blind.ranges_m) r = -1.0;
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(map_.CarveFreeSpace(blind, centre_), 0u);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_EQ(map_.CarveFreeSpace(blind, centre_, kMargin, kMarginPerM), 0u);
   EXPECT_EQ(map_.live_size(), 1u);
 }
 
@@ -95,15 +99,15 @@ TEST_F(CarvingTest, PointsBesideADepthJumpAreKept) {
   const LaserScan with_pillar = testing::NoisyScan(world, centre_, 720, 0.0, 1);
   map_.InsertScan(scan_, centre_);  // the wall seen before the pillar was there
   const std::size_t before = map_.live_size();
-  for (int i = 0; i < 3; ++i) map_.CarveFreeSpace(with_pillar, centre_);
+  for (int i = 0; i < 3; ++i) map_.CarveFreeSpace(with_pillar, centre_, kMargin, kMarginPerM);
   EXPECT_EQ(map_.live_size(), before);  // the pillar is in front of them, nothing seen through
 }
 
 TEST_F(CarvingTest, SavedMapsHoldOnlyLivePoints) {
   map_.InsertScan(scan_, centre_);
   map_.Insert(Eigen::Vector2d(7.0, 4.0), 0.05);
-  map_.CarveFreeSpace(scan_, centre_);
-  map_.CarveFreeSpace(scan_, centre_);
+  map_.CarveFreeSpace(scan_, centre_, kMargin, kMarginPerM);
+  map_.CarveFreeSpace(scan_, centre_, kMargin, kMarginPerM);
   const std::string path = testing::TemporaryDir() + "/carved.pcd";
   SavePointMapPcd(map_, path);
   const PointMap loaded = LoadPointMapPcd(path);
@@ -112,7 +116,7 @@ TEST_F(CarvingTest, SavedMapsHoldOnlyLivePoints) {
 }
 
 TEST_F(CarvingTest, NegativeMarginIsRefused) {
-  EXPECT_THROW(map_.CarveFreeSpace(scan_, centre_, -0.1), std::invalid_argument);
+  EXPECT_THROW(map_.CarveFreeSpace(scan_, centre_, -0.1, 0.0), std::invalid_argument);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "scanloc/io/corrected_scans.hpp"
+#include "scanloc/likelihood/candidate_ranking.hpp"
 #include "scanloc/maps/point_map.hpp"
 #include "scanloc/refinement/refiner.hpp"
 #include "test_support.hpp"
@@ -43,7 +44,8 @@ Outcome RefineHeldOutScans(const std::vector<CorrectedScan>& scans, const Refine
     const double yaw = angle(rng) >= 0.0 ? 0.05 : -0.05;
     const Pose2D start{s.T_world_laser.x_m + 0.2 * std::cos(a),
                        s.T_world_laser.y_m + 0.2 * std::sin(a), s.T_world_laser.yaw_rad + yaw};
-    const RefinementResult r = Refine(MapView{nullptr, &map}, s.scan, start, {}, refiner);
+    const RefinementResult r =
+        Refine(MapView{nullptr, &map}, s.scan, start, {}, ValidationOptions{}.alpha_m, refiner);
     const Pose2D error = Between(s.T_world_laser, r.T_world_laser);
     const double e = std::hypot(error.x_m, error.y_m);
     errors.push_back(e);

@@ -492,6 +492,21 @@ TEST_F(ReportTest, ARunWithAnEmptyMapAndNoValidCandidateRendersWithMessages) {
   EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
 }
 
+// Runs written before E_max had one key kept the session's as session.max_expect_value_m: the
+// report reads it as the rule 2 the session applied, without a note.
+TEST_F(ReportTest, AnOlderRunsSessionExpectValueLimitIsReadAsValidations) {
+  WriteRecords({Localised(0, true)});
+  SavePointMapPcd(PointMap{}, dir_ + "/map.pcd");
+  Write("summary.json", nlohmann::json{{"config",
+                                        {{"session", {{"max_expect_value_m", 0.08}}},
+                                         {"validation", {{"max_expect_value_m", 0.05}}}}}}
+                            .dump());
+  const RunContents contents = ReadRunContents(dir_);
+  EXPECT_DOUBLE_EQ(contents.config.validation.max_expect_value_m, 0.08);
+  for (const std::string& note : contents.notes)
+    EXPECT_FALSE(Contains(note, "configuration")) << note;
+}
+
 TEST_F(ReportTest, MissingSummaryAndMapAreSaidAndTheRestRenders) {
   WriteRecords({Localised(0, true), Localised(1, true)});
   const ReportResult result = WriteRunReport(dir_, Everything());

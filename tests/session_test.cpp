@@ -168,8 +168,9 @@ TEST(Session, AnUnvalidatedPostureIsTheRefinedBestGuessAndDoesNotExtendTheMap) {
   const Sequence sequence = LoopAroundTheRoom(6);
   SessionOptions options;
   options.initial_pose = sequence.truth.front();
-  options.max_expect_value_m = 1e-4;  // rule 2 can never pass
-  Session session(SessionConfig{options, {}}, {}, {}, PointMap{});
+  SessionConfig config{options, {}};
+  config.localisation.validation.max_expect_value_m = 1e-4;  // rule 2 can never pass
+  Session session(config, {}, {}, PointMap{});
   session.Process(sequence.iterations[0]);
   const std::size_t points = session.point_map().live_size();
   for (std::size_t i = 1; i < 10; ++i) {

@@ -1,176 +1,308 @@
 #include "scanloc/config/config.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
-#include <limits>
+#include <iomanip>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
 #include <stdexcept>
 #include <type_traits>
+
+#include "option_table.hpp"
 
 namespace scanloc {
 namespace {
 
+using config_table::Bounds;
 using nlohmann::json;
 
-// Reads the members of one JSON object into fields, refusing unknown keys.
-class Section {
- public:
-  Section(const json& object, std::string path) : object_(object), path_(std::move(path)) {
-    if (!object_.is_object()) throw std::runtime_error(path_ + ": expected a JSON object");
+// Names of the enumerations a config spells out.
+void FromName(const std::string& name, RobustKernel& kernel) {
+  kernel = ParseRobustKernel(name);
+}
+void FromName(const std::string& name, RefinementMethod& method) {
+  method = ParseRefinementMethod(name);
+}
+void FromName(const std::string& name, IncidenceWeighting& weighting) {
+  weighting = ParseIncidenceWeighting(name);
+}
+void FromName(const std::string& name, PointAssociation& association) {
+  association = ParsePointAssociation(name);
+}
+
+std::string Number(double value) {
+  std::ostringstream text;
+  text << std::setprecision(10) << value;
+  return text.str();
+}
+
+std::string RangeText(Bounds bounds) {
+  return "[" + Number(bounds.min) + ", " + Number(bounds.max) + "]";
+}
+
+// "" when `value` is finite and within `bounds`, else what is wrong with it.
+std::string RangeProblem(double value, Bounds bounds, bool whole) {
+  if (std::isfinite(value) && value >= bounds.min && value <= bounds.max) return "";
+  return Number(value) + " is out of range: expected a " + (whole ? "whole " : "finite ") +
+         "number in " + RangeText(bounds);
+}
+
+std::string PoseProblem(const Pose2D& pose, Bounds position, Bounds heading) {
+  std::string problem = RangeProblem(pose.x_m, position, false);
+  if (problem.empty()) problem = RangeProblem(pose.y_m, position, false);
+  if (problem.empty()) problem = RangeProblem(pose.yaw_rad, heading, false);
+  return problem.empty() ? "" : "[x, y, yaw]: " + problem;
+}
+
+// The JSON pointer of a dotted key: "a.b" → "/a/b".
+json::json_pointer Pointer(const std::string& key) {
+  std::string pointer = "/" + key;
+  for (char& ch : pointer)
+    if (ch == '.') ch = '/';
+  return json::json_pointer(pointer);
+}
+
+// Collects the declared keys and the sections that hold them.
+struct KeyCollector {
+  std::set<std::string> keys, sections;
+  void Add(const std::string& key) {
+    keys.insert(key);
+    for (auto dot = key.find('.'); dot != std::string::npos; dot = key.find('.', dot + 1))
+      sections.insert(key.substr(0, dot));
   }
   template <class T>
-  Section& Field(const char* key, T& field) {
-    known_.push_back(key);
-    if (const auto it = object_.find(key); it != object_.end()) {
-      const std::string where = path_ + "." + key;
-      if constexpr (std::is_same_v<T, int>) {
-        // get<int>() would truncate 20.9 and wrap 2^32 + 20: refuse both.
-        if (!it->is_number_integer() || *it < std::numeric_limits<int>::min() ||
-            *it > std::numeric_limits<int>::max())
-          throw std::runtime_error(where + ": expected a whole number");
-        field = it->template get<int>();
-      } else if constexpr (std::is_same_v<T, bool>) {
-        if (!it->is_boolean()) throw std::runtime_error(where + ": expected true or false");
-        field = it->template get<bool>();
-      } else if constexpr (std::is_same_v<T, std::vector<double>>) {
-        if (!it->is_array() ||
-            !std::all_of(it->begin(), it->end(), [](const json& v) { return v.is_number(); }))
-          throw std::runtime_error(where + ": expected an array of numbers");
-        field = it->template get<std::vector<double>>();
-      } else if constexpr (std::is_same_v<T, std::string>) {
-        if (!it->is_string()) throw std::runtime_error(where + ": expected a string (a name)");
-        field = it->template get<std::string>();
-      } else {
-        if (!it->is_number()) throw std::runtime_error(where + ": expected a number");
-        field = it->template get<T>();
+  void operator()(const char* key, T&, Bounds, const char*) {
+    Add(key);
+  }
+  template <class T>
+  void operator()(const char* key, T&, const char*) {
+    Add(key);
+  }
+  void operator()(const char* key, const Pose2D&, Bounds, Bounds, const char*) { Add(key); }
+};
+
+const KeyCollector& DeclaredKeys() {
+  static const KeyCollector collector = [] {
+    KeyCollector keys;
+    const Config defaults;
+    config_table::VisitOptions(defaults, keys);
+    return keys;
+  }();
+  return collector;
+}
+
+// Refuses members of `object` (at `prefix`, "" for the top) that no option declares, naming
+// their path; a key that moved names its new place.
+void RefuseUnknownKeys(const json& object, const std::string& prefix) {
+  const std::string where = prefix.empty() ? "config" : "config." + prefix;
+  if (!object.is_object()) throw std::runtime_error(where + ": expected a JSON object");
+  const KeyCollector& declared = DeclaredKeys();
+  for (const auto& [key, value] : object.items()) {
+    const std::string path = prefix.empty() ? key : prefix + "." + key;
+    for (const auto& moved : config_table::kMovedOptions)
+      if (path == moved.old_key)
+        throw std::runtime_error("config." + path + ": this option moved to " + moved.new_key +
+                                 "; set that instead");
+    if (key.find('.') != std::string::npos)  // "a.b" would pass as a path, then be ignored
+      throw std::runtime_error(where + ": unknown key '" + key +
+                               "' (sections nest as objects: {\"a\": {\"b\": ...}})");
+    if (declared.keys.count(path)) continue;
+    if (!declared.sections.count(path))
+      throw std::runtime_error(where + ": unknown key '" + key + "'");
+    RefuseUnknownKeys(value, path);
+  }
+}
+
+// Reads every declared key present in a JSON object (already checked by RefuseUnknownKeys),
+// refusing values of the wrong type or out of their bounds with the key's path.
+class JsonReader {
+ public:
+  explicit JsonReader(const json& root) : root_(root) {}
+
+  template <class T>
+  void operator()(const char* key, T& field, Bounds bounds, const char*) {
+    const json* node = Find(key);
+    if (!node) return;
+    const std::string where = std::string("config.") + key;
+    if constexpr (std::is_same_v<T, int>) {
+      if (!node->is_number_integer()) throw std::runtime_error(where + ": expected a whole number");
+      field = static_cast<int>(Checked(node->get<double>(), where, bounds, true));
+    } else if constexpr (std::is_same_v<T, std::optional<double>>) {
+      if (node->is_null())
+        field.reset();
+      else
+        field = Checked(NumberAt(*node, where), where, bounds, false);
+    } else {
+      field = Checked(NumberAt(*node, where), where, bounds, false);
+    }
+  }
+
+  template <class T>
+  void operator()(const char* key, T& field, const char*) {
+    const json* node = Find(key);
+    if (!node) return;
+    const std::string where = std::string("config.") + key;
+    if constexpr (std::is_same_v<T, bool>) {
+      if (!node->is_boolean()) throw std::runtime_error(where + ": expected true or false");
+      field = node->get<bool>();
+    } else {
+      if (!node->is_string()) throw std::runtime_error(where + ": expected a string (a name)");
+      try {
+        FromName(node->get<std::string>(), field);
+      } catch (const std::invalid_argument& e) {
+        throw std::runtime_error(where + ": " + e.what());
       }
     }
-    return *this;
   }
-  Section Child(const char* key) {
-    known_.push_back(key);
-    const auto it = object_.find(key);
-    return Section(it != object_.end() ? *it : empty_, path_ + "." + key);
-  }
-  bool Has(const char* key) const { return object_.contains(key); }
-  void RefuseUnknown() const {
-    for (const auto& [key, value] : object_.items())
-      if (std::find(known_.begin(), known_.end(), key) == known_.end())
-        throw std::runtime_error(path_ + ": unknown key '" + key + "'");
+
+  void operator()(const char* key, Pose2D& pose, Bounds position, Bounds heading, const char*) {
+    const json* node = Find(key);
+    if (!node) return;
+    const std::string where = std::string("config.") + key;
+    if (!node->is_array() || node->size() != 3 ||
+        !std::all_of(node->begin(), node->end(), [](const json& v) { return v.is_number(); }))
+      throw std::runtime_error(where + ": expected [x, y, yaw], three numbers");
+    const Pose2D read{(*node)[0].get<double>(), (*node)[1].get<double>(), (*node)[2].get<double>()};
+    if (const std::string problem = PoseProblem(read, position, heading); !problem.empty())
+      throw std::runtime_error(where + " " + problem);
+    pose = read;
   }
 
  private:
-  static inline const json empty_ = json::object();
-  const json& object_;
-  std::string path_;
-  std::vector<std::string> known_;
+  const json* Find(const char* key) const {
+    const auto pointer = Pointer(key);
+    return root_.contains(pointer) ? &root_.at(pointer) : nullptr;
+  }
+  static double NumberAt(const json& node, const std::string& where) {
+    if (!node.is_number()) throw std::runtime_error(where + ": expected a number");
+    return node.get<double>();
+  }
+  static double Checked(double value, const std::string& where, Bounds bounds, bool whole) {
+    if (const std::string problem = RangeProblem(value, bounds, whole); !problem.empty())
+      throw std::runtime_error(where + ": " + problem);
+    return value;
+  }
+
+  const json& root_;
 };
+
+// Writes every option at its key path.
+struct JsonWriter {
+  json root = json::object();
+  template <class T>
+  void operator()(const char* key, const T& field, Bounds, const char*) {
+    if constexpr (std::is_same_v<T, std::optional<double>>)
+      root[Pointer(key)] = field ? json(*field) : json(nullptr);
+    else
+      root[Pointer(key)] = field;
+  }
+  template <class T>
+  void operator()(const char* key, const T& field, const char*) {
+    if constexpr (std::is_enum_v<T>)
+      root[Pointer(key)] = ToString(field);
+    else
+      root[Pointer(key)] = field;
+  }
+  void operator()(const char* key, const Pose2D& pose, Bounds, Bounds, const char*) {
+    root[Pointer(key)] = {pose.x_m, pose.y_m, pose.yaw_rad};
+  }
+};
+
+// Checks the bounds of every option of a Config built in code (ApplyJson checks what it reads).
+struct BoundsChecker {
+  template <class T>
+  void operator()(const char* key, const T& field, Bounds bounds, const char*) const {
+    std::string problem;
+    if constexpr (std::is_same_v<T, std::optional<double>>) {
+      if (field) problem = RangeProblem(*field, bounds, false);
+    } else {
+      problem = RangeProblem(field, bounds, std::is_same_v<T, int>);
+    }
+    if (!problem.empty()) throw std::invalid_argument(std::string(key) + ": " + problem);
+  }
+  template <class T>
+  void operator()(const char*, const T&, const char*) const {}
+  void operator()(const char* key, const Pose2D& pose, Bounds position, Bounds heading,
+                  const char*) const {
+    if (const std::string problem = PoseProblem(pose, position, heading); !problem.empty())
+      throw std::invalid_argument(std::string(key) + " " + problem);
+  }
+};
+
+// The help text's line for each option.
+struct Describer {
+  const json defaults = ToJson(Config{});
+  std::vector<OptionDescription> options;
+  void Add(const char* key, std::string range, const char* meaning) {
+    options.push_back({key, defaults.at(Pointer(key)).dump(), std::move(range), meaning});
+  }
+  template <class T>
+  void operator()(const char* key, const T&, Bounds bounds, const char* meaning) {
+    Add(key, RangeText(bounds), meaning);
+  }
+  template <class T>
+  void operator()(const char* key, const T&, const char* meaning) {
+    Add(key, std::is_same_v<T, bool> ? "true or false" : "a name", meaning);
+  }
+  void operator()(const char* key, const Pose2D&, Bounds position, Bounds heading,
+                  const char* meaning) {
+    Add(key, "x, y in " + RangeText(position) + ", yaw in " + RangeText(heading), meaning);
+  }
+};
+
+// Parses JSON text, refusing an object that holds a key twice (the parser would keep the last
+// silently), with the path of the object.
+json ParseRefusingDuplicateKeys(std::istream& in) {
+  struct Level {
+    std::string path;
+    bool object = false;
+    std::set<std::string> keys;
+    std::string last_key;
+  };
+  std::vector<Level> levels;
+  const json::parser_callback_t callback = [&levels](int, json::parse_event_t event, json& parsed) {
+    using Event = json::parse_event_t;
+    if (event == Event::object_start || event == Event::array_start) {
+      std::string path = "config";
+      if (!levels.empty())
+        path = levels.back().path + (levels.back().object ? "." + levels.back().last_key : "[]");
+      levels.push_back({path, event == Event::object_start, {}, {}});
+    } else if (event == Event::object_end || event == Event::array_end) {
+      levels.pop_back();
+    } else if (event == Event::key) {
+      Level& level = levels.back();
+      level.last_key = parsed.get<std::string>();
+      if (!level.keys.insert(level.last_key).second)
+        throw std::runtime_error(level.path + ": duplicate key '" + level.last_key +
+                                 "' (write each key once)");
+    }
+    return true;
+  };
+  return json::parse(in, callback);
+}
 
 }  // namespace
 
 void Config::Validate() const {
+  BoundsChecker bounds;
+  config_table::VisitOptions(*this, bounds);
   scoring.test.Validate();
   scoring.distance.Validate();
   validation.Validate();
   PointMap check(point_map);  // validates its options
-  if (!(line_sampling_m > 0.0)) throw std::invalid_argument("line_sampling_m must be positive");
   refiner.ceres.Validate();
   refiner.error_descent.Validate();
+  refiner.icp.Validate();
   session.Validate();
-  if (!(scoring.simulation.footprint_factor >= 0.0))
-    throw std::invalid_argument("point_simulation.footprint_factor must be >= 0");
+  log.Validate();
 }
 
-void ApplyJson(const json& root, Config& c) {
-  Section top(root, "config");
-  auto test = top.Child("likelihood_test");
-  test.Field("slot_count", c.scoring.test.slot_count)
-      .Field("slot_width_m", c.scoring.test.slot_width_m)
-      .Field("match_threshold_m", c.scoring.test.match_threshold_m)
-      .Field("last_slot_distance_m", c.scoring.test.last_slot_distance_m)
-      .RefuseUnknown();
-  auto distance = top.Child("likelihood_distance");
-  std::string kernel = ToString(c.scoring.distance.kernel);
-  distance.Field("kernel", kernel).Field("scale_m", c.scoring.distance.scale_m).RefuseUnknown();
-  try {
-    c.scoring.distance.kernel = ParseRobustKernel(kernel);
-  } catch (const std::invalid_argument& e) {
-    throw std::runtime_error(std::string("config.likelihood_distance.kernel: ") + e.what());
-  }
-  top.Child("point_simulation")
-      .Field("footprint_factor", c.scoring.simulation.footprint_factor)
-      .RefuseUnknown();
-  top.Child("validation")
-      .Field("min_match_ratio", c.validation.min_match_ratio)
-      .Field("max_expect_value_m", c.validation.max_expect_value_m)
-      .Field("alpha_m", c.validation.alpha_m)
-      .Field("max_cost_ratio", c.validation.max_cost_ratio)
-      .Field("much_less_factor", c.validation.much_less_factor)
-      .RefuseUnknown();
-  top.Child("point_map")
-      .Field("cell_size_m", c.point_map.cell_size_m)
-      .Field("max_point_spacing_m", c.point_map.max_point_spacing_m)
-      .RefuseUnknown();
-  top.Field("line_sampling_m", c.line_sampling_m);
-  top.Child("mounting")
-      .Field("x_m", c.mounting.T_robot_laser.x_m)
-      .Field("y_m", c.mounting.T_robot_laser.y_m)
-      .Field("yaw_rad", c.mounting.T_robot_laser.yaw_rad)
-      .RefuseUnknown();
-  auto refinement = top.Child("refinement");
-  std::string method = ToString(c.refiner.method);
-  refinement.Field("method", method);
-  auto ceres = refinement.Child("ceres");
-  std::string incidence = ToString(c.refiner.ceres.incidence);
-  std::string association = ToString(c.refiner.ceres.point_association);
-  ceres.Field("max_outer_iterations", c.refiner.ceres.max_outer_iterations)
-      .Field("max_solver_iterations", c.refiner.ceres.max_solver_iterations)
-      .Field("translation_tolerance_m", c.refiner.ceres.translation_tolerance_m)
-      .Field("rotation_tolerance_rad", c.refiner.ceres.rotation_tolerance_rad)
-      .Field("incidence", incidence)
-      .Field("point_association", association)
-      .Field("max_incidence_rad", c.refiner.ceres.max_incidence_rad)
-      .Field("max_residual_m", c.refiner.ceres.max_residual_m)
-      .Field("line_fit_neighbours", c.refiner.ceres.line_fit_neighbours)
-      .Field("line_fit_radius_m", c.refiner.ceres.line_fit_radius_m)
-      .Field("max_line_thickness", c.refiner.ceres.max_line_thickness)
-      .Field("degeneracy_ratio", c.refiner.ceres.degeneracy_ratio)
-      .RefuseUnknown();
-  refinement.Child("error_descent")
-      .Field("initial_step_m", c.refiner.error_descent.initial_step_m)
-      .Field("initial_step_rad", c.refiner.error_descent.initial_step_rad)
-      .Field("step_levels", c.refiner.error_descent.step_levels)
-      .Field("max_moves_per_level", c.refiner.error_descent.max_moves_per_level)
-      .RefuseUnknown();
-  refinement.RefuseUnknown();
-  try {
-    c.refiner.method = ParseRefinementMethod(method);
-    c.refiner.ceres.incidence = ParseIncidenceWeighting(incidence);
-    c.refiner.ceres.point_association = ParsePointAssociation(association);
-  } catch (const std::invalid_argument& e) {
-    throw std::runtime_error(std::string("config.refinement: ") + e.what());
-  }
-  std::vector<double> initial{c.session.initial_pose.x_m, c.session.initial_pose.y_m,
-                              c.session.initial_pose.yaw_rad};
-  auto session = top.Child("session");
-  session.Field("heading_spread_rad", c.session.heading_spread_rad)
-      .Field("heading_step_rad", c.session.heading_step_rad)
-      .Field("max_refined_candidates", c.session.max_refined_candidates)
-      .Field("max_expect_value_m", c.session.max_expect_value_m)
-      .Field("heading_candidates_min_turn_rad", c.session.heading_candidates_min_turn_rad)
-      .Field("localise_translation_m", c.session.localise_translation_m)
-      .Field("localise_rotation_rad", c.session.localise_rotation_rad)
-      .Field("insert_translation_m", c.session.insert_translation_m)
-      .Field("insert_rotation_rad", c.session.insert_rotation_rad)
-      .Field("insert_unvalidated", c.session.insert_unvalidated)
-      .Field("free_space_margin_m", c.session.extension.free_space_margin_m)
-      .Field("free_space_margin_per_m", c.session.extension.free_space_margin_per_m)
-      .Field("initial_pose", initial)
-      .RefuseUnknown();
-  if (initial.size() != 3)
-    throw std::runtime_error("config.session.initial_pose: expected [x, y, yaw]");
-  c.session.initial_pose = {initial[0], initial[1], initial[2]};
-  top.RefuseUnknown();
+void ApplyJson(const json& root, Config& config) {
+  RefuseUnknownKeys(root, "");
+  JsonReader reader(root);
+  config_table::VisitOptions(config, reader);
 }
 
 Config LoadConfig(const std::string& path) {
@@ -178,9 +310,11 @@ Config LoadConfig(const std::string& path) {
   if (!in) throw std::runtime_error("cannot open config file " + path);
   json root;
   try {
-    root = json::parse(in);
-  } catch (const json::parse_error& e) {
+    root = ParseRefusingDuplicateKeys(in);
+  } catch (const json::exception& e) {
     throw std::runtime_error(path + ": not valid JSON: " + e.what());
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(path + ": " + e.what());
   }
   Config config;
   try {
@@ -192,67 +326,28 @@ Config LoadConfig(const std::string& path) {
   return config;
 }
 
-json ToJson(const Config& c) {
-  return {
-      {"likelihood_test",
-       {{"slot_count", c.scoring.test.slot_count},
-        {"slot_width_m", c.scoring.test.slot_width_m},
-        {"match_threshold_m", c.scoring.test.match_threshold_m},
-        {"last_slot_distance_m", c.scoring.test.last_slot_distance_m}}},
-      {"likelihood_distance",
-       {{"kernel", ToString(c.scoring.distance.kernel)}, {"scale_m", c.scoring.distance.scale_m}}},
-      {"point_simulation", {{"footprint_factor", c.scoring.simulation.footprint_factor}}},
-      {"validation",
-       {{"min_match_ratio", c.validation.min_match_ratio},
-        {"max_expect_value_m", c.validation.max_expect_value_m},
-        {"alpha_m", c.validation.alpha_m},
-        {"max_cost_ratio", c.validation.max_cost_ratio},
-        {"much_less_factor", c.validation.much_less_factor}}},
-      {"point_map",
-       {{"cell_size_m", c.point_map.cell_size_m},
-        {"max_point_spacing_m", c.point_map.max_point_spacing_m}}},
-      {"line_sampling_m", c.line_sampling_m},
-      {"mounting",
-       {{"x_m", c.mounting.T_robot_laser.x_m},
-        {"y_m", c.mounting.T_robot_laser.y_m},
-        {"yaw_rad", c.mounting.T_robot_laser.yaw_rad}}},
-      {"refinement",
-       {{"method", ToString(c.refiner.method)},
-        {"ceres",
-         {{"max_outer_iterations", c.refiner.ceres.max_outer_iterations},
-          {"max_solver_iterations", c.refiner.ceres.max_solver_iterations},
-          {"translation_tolerance_m", c.refiner.ceres.translation_tolerance_m},
-          {"rotation_tolerance_rad", c.refiner.ceres.rotation_tolerance_rad},
-          {"incidence", ToString(c.refiner.ceres.incidence)},
-          {"point_association", ToString(c.refiner.ceres.point_association)},
-          {"max_incidence_rad", c.refiner.ceres.max_incidence_rad},
-          {"max_residual_m", c.refiner.ceres.max_residual_m},
-          {"line_fit_neighbours", c.refiner.ceres.line_fit_neighbours},
-          {"line_fit_radius_m", c.refiner.ceres.line_fit_radius_m},
-          {"max_line_thickness", c.refiner.ceres.max_line_thickness},
-          {"degeneracy_ratio", c.refiner.ceres.degeneracy_ratio}}},
-        {"error_descent",
-         {{"initial_step_m", c.refiner.error_descent.initial_step_m},
-          {"initial_step_rad", c.refiner.error_descent.initial_step_rad},
-          {"step_levels", c.refiner.error_descent.step_levels},
-          {"max_moves_per_level", c.refiner.error_descent.max_moves_per_level}}}}},
-      {"session",
-       {{"heading_spread_rad", c.session.heading_spread_rad},
-        {"heading_step_rad", c.session.heading_step_rad},
-        {"max_refined_candidates", c.session.max_refined_candidates},
-        {"max_expect_value_m", c.session.max_expect_value_m},
-        {"heading_candidates_min_turn_rad", c.session.heading_candidates_min_turn_rad},
-        {"localise_translation_m", c.session.localise_translation_m},
-        {"localise_rotation_rad", c.session.localise_rotation_rad},
-        {"insert_translation_m", c.session.insert_translation_m},
-        {"insert_rotation_rad", c.session.insert_rotation_rad},
-        {"insert_unvalidated", c.session.insert_unvalidated},
-        {"free_space_margin_m", c.session.extension.free_space_margin_m},
-        {"free_space_margin_per_m", c.session.extension.free_space_margin_per_m},
-        {"initial_pose",
-         {c.session.initial_pose.x_m, c.session.initial_pose.y_m,
-          c.session.initial_pose.yaw_rad}}}},
-  };
+json ToJson(const Config& config) {
+  JsonWriter writer;
+  config_table::VisitOptions(config, writer);
+  return writer.root;
+}
+
+std::vector<OptionDescription> DescribeOptions() {
+  Describer describer;
+  const Config defaults;
+  config_table::VisitOptions(defaults, describer);
+  return describer.options;
+}
+
+std::string OptionsHelp() {
+  std::ostringstream text;
+  text << "Options of the JSON config (--config FILE) and of --set KEY=VALUE: key = default,\n"
+          "accepted values, meaning. A file holds any subset as nested objects, e.g.\n"
+          "{\"likelihood_test\": {\"slot_count\": 30}}.\n";
+  for (const OptionDescription& option : DescribeOptions())
+    text << "\n  " << option.key << " = " << option.default_value << "   " << option.accepted
+         << "\n      " << option.meaning << '\n';
+  return text.str();
 }
 
 }  // namespace scanloc

@@ -41,8 +41,7 @@ class FixedLineMapRun {
     const std::vector<Candidate> candidates =
         PredictionCandidates(record.prediction.Normalized(), iteration.external_candidates,
                              /*turning=*/true, mounting_, config_.session);
-    LocalisationOptions options{config_.scoring, config_.validation, config_.refiner};
-    options.validation.max_expect_value_m = config_.session.max_expect_value_m;
+    const LocalisationOptions options{config_.scoring, config_.validation, config_.refiner};
     record.localisation =
         Localise({&line_map_, &no_points_}, iteration.scan, candidates, mounting_, options,
                  RefinePolicy::kBestValid, config_.session.max_refined_candidates);

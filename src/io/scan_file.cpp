@@ -151,9 +151,9 @@ void WriteScanFile(const LaserScan& scan, const std::string& path) {
   });
 }
 
-LaserScan LoadScan(const std::string& path, std::size_t carmen_index) {
+LaserScan LoadScan(const std::string& path, std::size_t carmen_index, const CarmenOptions& carmen) {
   for (const char* suffix : {".clf", ".clf.gz", ".log", ".log.gz"})
-    if (EndsWith(path, suffix)) return ReadCarmenScan(path, carmen_index);
+    if (EndsWith(path, suffix)) return ReadCarmenScan(path, carmen_index, carmen);
   if (carmen_index != 0)
     throw std::runtime_error(path +
                              ": a scan index is only meaningful for CARMEN logs "

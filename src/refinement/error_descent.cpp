@@ -59,12 +59,12 @@ std::vector<LatticeKey> NeighbourOffsets(bool diagonal_moves) {
 class LatticeSearch {
  public:
   LatticeSearch(const MapView& map, const LaserScan& scan, const Pose2D& T_world_laser_initial,
-                const ScoringOptions& scoring, const ErrorDescentOptions& options)
+                const ScoringOptions& scoring, double alpha_m, const ErrorDescentOptions& options)
       : map_(map),
         scan_(scan),
         initial_(T_world_laser_initial),
         scoring_(scoring),
-        alpha_m_(options.alpha_m),
+        alpha_m_(alpha_m),
         unit_m_(std::ldexp(options.initial_step_m, 1 - options.step_levels)),
         unit_rad_(std::ldexp(options.initial_step_rad, 1 - options.step_levels)) {}
 
@@ -107,21 +107,22 @@ void ErrorDescentOptions::Validate() const {
   Require(step_levels >= 1 && step_levels <= kMaxStepLevels,
           "step_levels must be in [1, " + std::to_string(kMaxStepLevels) + "]");
   Require(max_moves_per_level >= 1, "max_moves_per_level must be >= 1");
-  Require(std::isfinite(alpha_m) && alpha_m >= 0.0, "alpha_m must be finite and >= 0");
 }
 
 RefinementResult RefineErrorDescent(const MapView& map, const LaserScan& scan,
                                     const Pose2D& T_world_laser_initial,
-                                    const ScoringOptions& scoring,
+                                    const ScoringOptions& scoring, double alpha_m,
                                     const ErrorDescentOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   options.Validate();
+  if (!(std::isfinite(alpha_m) && alpha_m >= 0.0))
+    throw std::invalid_argument("RefineErrorDescent: alpha_m must be finite and >= 0");
   scan.CheckConsistent();
   if (!std::isfinite(T_world_laser_initial.x_m) || !std::isfinite(T_world_laser_initial.y_m) ||
       !std::isfinite(T_world_laser_initial.yaw_rad))
     throw std::invalid_argument("RefineErrorDescent: the initial posture must be finite");
 
-  LatticeSearch search(map, scan, T_world_laser_initial, scoring, options);
+  LatticeSearch search(map, scan, T_world_laser_initial, scoring, alpha_m, options);
   const std::vector<LatticeKey> offsets = NeighbourOffsets(options.diagonal_moves);
 
   RefinementResult result;

@@ -26,12 +26,13 @@ RefinementMethod ParseRefinementMethod(const std::string& name) {
 
 RefinementResult Refine(const MapView& map, const LaserScan& scan,
                         const Pose2D& T_world_laser_initial, const ScoringOptions& scoring,
-                        const RefinerOptions& options) {
+                        double alpha_m, const RefinerOptions& options) {
   switch (options.method) {
     case RefinementMethod::kCeres:
       return RefineCeres(map, scan, T_world_laser_initial, scoring, options.ceres);
     case RefinementMethod::kErrorDescent:
-      return RefineErrorDescent(map, scan, T_world_laser_initial, scoring, options.error_descent);
+      return RefineErrorDescent(map, scan, T_world_laser_initial, scoring, alpha_m,
+                                options.error_descent);
     case RefinementMethod::kIcp:
       return RefineIcp(map, scan, T_world_laser_initial, scoring, options.icp);
   }

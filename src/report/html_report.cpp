@@ -240,9 +240,7 @@ void WriteTrajectorySection(std::ostream& page, const RunContents& run,
 // EV and MP/NVP of every localised iteration against the rules' bounds.
 void WriteMomentsSection(std::ostream& page, const RunContents& run) {
   const std::vector<IterationRow>& rows = run.iterations.rows;
-  // The rules as the session applied them: its own E_max replaces validation's (SessionOptions).
-  ValidationOptions session_rules = run.config.validation;
-  session_rules.max_expect_value_m = run.config.session.max_expect_value_m;
+  const ValidationOptions& session_rules = run.config.validation;  // as the session applied them
   page << "<h2 id=\"moments\">Moments over the session</h2>\n<figure>"
        << MomentSeriesFigure(rows, session_rules, "moments")
        << "<figcaption>For every localised iteration, the expected value (3.9) and the match "

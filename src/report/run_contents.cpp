@@ -53,6 +53,19 @@ std::string SummaryString(const json& summary, const char* section, const char* 
   return it != object->end() && it->is_string() ? it->get<std::string>() : "";
 }
 
+// A run folder's configuration as the current keys spell it: runs written before E_max had one
+// key kept the session's own as session.max_expect_value_m, which is what its rule 2 applied.
+json WithoutMovedKeys(json config) {
+  if (!config.is_object() || !config.contains("session") || !config["session"].is_object())
+    return config;
+  json& session = config["session"];
+  if (const auto it = session.find("max_expect_value_m"); it != session.end()) {
+    config["validation"]["max_expect_value_m"] = *it;
+    session.erase(it);
+  }
+  return config;
+}
+
 // The first candidate that exists as a file, or "".
 std::string FirstExisting(const std::vector<std::string>& candidates) {
   for (const std::string& path : candidates)
@@ -81,7 +94,7 @@ RunContents ReadRunContents(const std::string& directory, const RunInputOverride
   run.summary = ReadSummary(directory + "/summary.json", run.notes);
   if (const auto it = run.summary.find("config"); it != run.summary.end()) {
     try {
-      ApplyJson(*it, run.config);
+      ApplyJson(WithoutMovedKeys(*it), run.config);
     } catch (const std::exception& e) {
       run.config = Config{};
       run.notes.push_back(std::string("the configuration in summary.json could not be read (") +

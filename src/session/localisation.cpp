@@ -81,7 +81,8 @@ RankedCandidate RefineOne(const MapView& map, const LaserScan& scan, const Ranke
   RankedCandidate refined;
   refined.candidate = from.candidate;
   refined.from = index;
-  refined.refinement = Refine(map, scan, from.T_world_laser, options.scoring, refiner);
+  refined.refinement =
+      Refine(map, scan, from.T_world_laser, options.scoring, options.validation.alpha_m, refiner);
   RefinementResult& result = *refined.refinement;
   result.test_before = from.test;
   result.distance_before = from.distance;

@@ -27,7 +27,6 @@ void SessionOptions::Validate() const {
     if (!ok) throw std::invalid_argument(std::string("SessionOptions: ") + what);
   };
   require(heading_spread_rad >= 0.0 && heading_spread_rad < M_PI, "heading_spread_rad in [0, π)");
-  require(max_expect_value_m > 0.0, "max_expect_value_m must be > 0");
   require(max_refined_candidates >= 1, "max_refined_candidates must be >= 1");
   require(heading_step_rad > 0.0, "heading_step_rad must be positive");
   require(heading_candidates_min_turn_rad >= 0.0, "heading_candidates_min_turn_rad must be >= 0");
@@ -52,7 +51,6 @@ Session::Session(const SessionConfig& config, LaserMounting mounting, LineMap li
       line_map_(std::move(line_map)),
       point_map_(std::move(point_map)) {
   options_.Validate();
-  localisation_.validation.max_expect_value_m = options_.max_expect_value_m;
   localisation_.validation.Validate();
   localisation_.scoring.test.Validate();
   localisation_.scoring.distance.Validate();

@@ -17,6 +17,7 @@
 #include <string>
 
 #include "scanloc/geometry/laser_scan.hpp"
+#include "scanloc/io/carmen_log.hpp"
 
 namespace scanloc {
 
@@ -26,7 +27,8 @@ LaserScan ReadScanFile(const std::string& path);
 void WriteScanFile(const LaserScan& scan, const std::string& path);
 
 // Reads a scan from a native scan file, or the index-th laser scan of a CARMEN log (.clf, .log,
-// optionally .gz).
-LaserScan LoadScan(const std::string& path, std::size_t carmen_index = 0);
+// optionally .gz) read with `carmen`.
+LaserScan LoadScan(const std::string& path, std::size_t carmen_index = 0,
+                   const CarmenOptions& carmen = {});
 
 }  // namespace scanloc

@@ -58,9 +58,10 @@ class PointMap {
   // beam and both neighbouring beams, gets a miss; a point seen through more often than it was
   // seen (misses > samples) is removed: people, doors and other things that moved do not stay in
   // the map to occlude it. Beams without an echo carve nothing (glass, black surfaces). Returns
-  // the points removed.
-  std::size_t CarveFreeSpace(const LaserScan& scan, const Pose2D& T_world_laser,
-                             double margin_m = 0.2, double margin_per_m = 0.0);
+  // the points removed. The margins have no default here: SessionOptions::free_space_margin_m
+  // and free_space_margin_per_m are their one declaration.
+  std::size_t CarveFreeSpace(const LaserScan& scan, const Pose2D& T_world_laser, double margin_m,
+                             double margin_per_m);
 
   // Slots: indices 0 … size()−1 address points, some of which may have been removed by carving
   // (alive(i) false): they are in no search result and no saved map.

@@ -19,23 +19,21 @@ struct ErrorDescentOptions {
   int max_moves_per_level = 50;  // a level ends after this many moves even if still improving
   // false: the 6 axis neighbours (±x, ±y, ±θ); true: all 26 neighbours of the 3×3×3 stencil.
   bool diagonal_moves = true;
-  // (3.11) α of the criterion cost = EV + α·(NVP − MP)/NVP, metres: what a posture pays for the
-  // fraction of valid pairs that are not match pairs. The default is ValidationOptions::alpha_m.
-  double alpha_m = 0.1;
   // Throws std::invalid_argument naming the first option out of its domain.
   void Validate() const;
 };
 
 // Refines T_world_laser_initial by Error Descent: from the current posture, scores the postures one
 // step away (simulated scan + Likelihood Test, with `scoring`), moves to the neighbour with the
-// lowest cost (3.11) — ties broken by the lower dispersion (3.10) — while that improves on the
-// current posture, and halves the step when none does, for `options.step_levels` levels.
+// lowest cost (3.11) = EV + α·(NVP − MP)/NVP, α = `alpha_m` being the validation rules' own
+// (ValidationOptions::alpha_m), ties broken by the lower dispersion (3.10), while that improves on
+// the current posture, and halves the step when none does, for `options.step_levels` levels.
 // iterations counts the postures scored (the initial one included); converged is true when all
 // levels were completed within max_moves_per_level, and false for an empty map or a scan without a
 // valid beam (the initial posture is then returned unchanged).
 RefinementResult RefineErrorDescent(const MapView& map, const LaserScan& scan,
                                     const Pose2D& T_world_laser_initial,
-                                    const ScoringOptions& scoring,
+                                    const ScoringOptions& scoring, double alpha_m,
                                     const ErrorDescentOptions& options = {});
 
 }  // namespace scanloc

@@ -21,8 +21,10 @@ struct RefinerOptions {
   IcpOptions icp;
 };
 
+// Refines with options.method; `alpha_m` is (3.11)'s α of the validation rules
+// (ValidationOptions::alpha_m), Error Descent's criterion.
 RefinementResult Refine(const MapView& map, const LaserScan& scan,
                         const Pose2D& T_world_laser_initial, const ScoringOptions& scoring,
-                        const RefinerOptions& options);
+                        double alpha_m, const RefinerOptions& options);
 
 }  // namespace scanloc

@@ -30,10 +30,6 @@ struct SessionOptions {
   // postures are tested again and ranked by the rules (the chapter's refine-then-validate): in
   // fast turns two headings 5° apart may both look plausible until they are refined.
   int max_refined_candidates = 3;
-  // Rule 2's E_max for a session's scans, in place of validation.max_expect_value_m: the
-  // chapter's 0.05 m suits its 0.15° laser; on the 1° and 0.5° benchmark logs the refined EV has
-  // a median of 0.06–0.07 m, while a heading 5° off scores 0.15–0.25 m.
-  double max_expect_value_m = 0.1;
   // A scan is localised only when the odometry moved more than this since the last localised
   // one; the others get the odometry prediction (their posture is still recorded).
   double localise_translation_m = 0.05;

@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# The five sparse Radish logs of other buildings (../shared/datasets/radish, see its README), each
+# with noisy synthetic odometry and with perfect odometry: the default session on every one, scored
+# on all relations and on the local ones (scans ≤ 15 s apart), beside the odometry alone (every
+# scan takes the prediction: the localisation gate never opens). Prints the table of issue 15.
+#   scripts/radish-sessions.sh [OUT_DIR]   (default: build/radish; logs in $SCANLOC_DATASETS/radish)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=${1:-build/radish}
+source scripts/public-logs.sh radish-sessions
+radish="$datasets/radish"
+mkdir -p "$out"
+odometry_only=(--set session.localise_translation_m=1e9 --set session.localise_rotation_rad=1e9)
+for log in seattle orebro fhw edmonton acapulco; do
+  for kind in odometry noisy exact; do
+    echo "radish-sessions: $log $kind" >&2
+    input="$radish/$log.${kind/odometry/noisy}.clf.gz"
+    args=()
+    [ "$kind" = odometry ] && args=("${odometry_only[@]}")
+    /usr/bin/time -f "%U %S" -o "$out/$log-$kind.cpu" \
+      "$scanloc" session --log "$input" --out "$out/$log-$kind" --quiet "${args[@]}" \
+      > "$out/$log-$kind.session.txt" || true
+    for relations in relations local.relations; do
+      "$scanloc" evaluate --trajectory "$out/$log-$kind/trajectory.tum" \
+        --relations "$radish/$log.$relations" --json > "$out/$log-$kind.$relations.json" || true
+    done
+  done
+done
+python3 - "$out" <<'PY'
+import json, sys
+out = sys.argv[1]
+def ev(log, kind, relations):
+    try:
+        return json.load(open(f"{out}/{log}-{kind}.{relations}.json"))["translation_m"]
+    except Exception:
+        return None
+def mm(e):
+    return "failed" if e is None else f"{e['mean']:.3f} / {e['max']:.1f}"
+print("| log | odometry given: mean / max [m] | noisy: mean / max | noisy: local max "
+      "| perfect odometry: mean / max | perfect: local max |")
+print("|---|---|---|---|---|---|")
+def local_max(e):
+    return "failed" if e is None else f"{e['max']:.2f}"
+for log in ["seattle", "orebro", "fhw", "edmonton", "acapulco"]:
+    cells = [mm(ev(log, "odometry", "relations")), mm(ev(log, "noisy", "relations")),
+             local_max(ev(log, "noisy", "local.relations")), mm(ev(log, "exact", "relations")),
+             local_max(ev(log, "exact", "local.relations"))]
+    print(f"| {log} | " + " | ".join(cells) + " |")
+PY

@@ -1,0 +1,189 @@
+#pragma once
+// The one declaration of every configuration option: its key in the JSON config, the field it
+// sets, the range of sane values and its meaning. The JSON reader (ApplyJson), the writer
+// (ToJson), the range checks and the help text (`scanloc options`) are all derived from it.
+//
+// A visitor is called as
+//   v(key, field, Bounds, meaning)         numbers (int, double, std::optional<double>)
+//   v(key, field, meaning)                 booleans and enumerations (by name)
+//   v(key, pose, position, heading, meaning)  a Pose2D written as [x, y, yaw]
+// `field` is a reference into the Config (const when the Config is).
+
+#include <cmath>
+
+#include "scanloc/config/config.hpp"
+
+namespace scanloc::config_table {
+
+// Inclusive range of the values a key accepts; the stage's own Validate() checks the finer
+// domain (e.g. > 0), these bounds refuse the absurd (1e-300 m slots, a billion neighbours).
+struct Bounds {
+  double min = 0.0;
+  double max = 0.0;
+};
+
+inline constexpr Bounds kDistance{1e-4, 1e3};  // metres: 0.1 mm to 1 km
+inline constexpr Bounds kAngle{0.0, M_PI};     // radians: none to half a turn
+inline constexpr Bounds kPosition{-1e6, 1e6};  // metres, world coordinates
+inline constexpr Bounds kHeading{-2.0 * M_PI, 2.0 * M_PI};
+inline constexpr Bounds kIterations{1, 1e5};
+
+template <class C, class V>
+void VisitScoring(C& c, V& v) {
+  auto& test = c.scoring.test;
+  v("likelihood_test.slot_count", test.slot_count, Bounds{2, 1e4}, "NS: histogram slots");
+  v("likelihood_test.slot_width_m", test.slot_width_m, Bounds{1e-4, 10},
+    "Δslot: width of one histogram slot, m");
+  v("likelihood_test.match_threshold_m", test.match_threshold_m, kDistance,
+    "T_Map: a pair farther apart is not a match pair, m");
+  v("likelihood_test.last_slot_distance_m", test.last_slot_distance_m, Bounds{0, 1e3},
+    "Δmax: the distance standing for the last slot, m; 0: 3/2·NS·Δslot");
+  v("likelihood_distance.kernel", c.scoring.distance.kernel,
+    "robust kernel of the Likelihood Distance: cauchy, huber or tukey");
+  v("likelihood_distance.scale_m", c.scoring.distance.scale_m, kDistance,
+    "the kernel's scale c: distances well above it weigh little, m");
+  v("point_simulation.footprint_factor", c.scoring.simulation.footprint_factor, Bounds{0, 100},
+    "a map point hides the beams within ±factor·spacing/2 of its bearing; 0: plain (3.7)");
+  v("line_sampling_m", c.line_sampling_m, Bounds{1e-4, 10},
+    "spacing when a line map is sampled to points (§3.2.2), m");
+  v("point_map.cell_size_m", c.point_map.cell_size_m, Bounds{0, 100},
+    "de-duplication: a point is not inserted into an occupied square cell of this side, m; 0: "
+    "off");
+  v("point_map.max_point_spacing_m", c.point_map.max_point_spacing_m, Bounds{0, 100},
+    "upper bound of the spacing recorded with a point (bounds what it occludes), m");
+  auto& laser = c.mounting.T_robot_laser;
+  v("mounting.x_m", laser.x_m, Bounds{-100, 100}, "laser position ahead of the robot base, m");
+  v("mounting.y_m", laser.y_m, Bounds{-100, 100}, "laser position left of the robot base, m");
+  v("mounting.yaw_rad", laser.yaw_rad, kHeading, "laser heading on the robot, rad");
+}
+
+template <class C, class V>
+void VisitValidation(C& c, V& v) {
+  auto& rules = c.validation;
+  v("validation.min_match_ratio", rules.min_match_ratio, Bounds{0, 1},
+    "rule 1 MinMatchRatio: MatchPairs/NVP must exceed it");
+  v("validation.max_expect_value_m", rules.max_expect_value_m, Bounds{1e-6, 1e3},
+    "rule 2 E_max: ExpectValue must stay below it, m (the chapter's 0.15° laser: 0.05)");
+  v("validation.alpha_m", rules.alpha_m, Bounds{0, 1e3},
+    "(3.11) α: cost per unit ratio of non-match pairs, m; also Error Descent's criterion");
+  v("validation.max_cost_ratio", rules.max_cost_ratio, Bounds{1, 1e6},
+    "rule 3: rejected when cost > max_cost_ratio · best cost");
+  v("validation.much_less_factor", rules.much_less_factor, Bounds{1, 1e6},
+    "rules 4 and 5: a << b reads as much_less_factor · a < b");
+}
+
+template <class C, class V>
+void VisitCeres(C& c, V& v) {
+  auto& o = c.refiner.ceres;
+  v("refinement.ceres.max_outer_iterations", o.max_outer_iterations, kIterations,
+    "re-simulations (new correspondences)");
+  v("refinement.ceres.max_solver_iterations", o.max_solver_iterations, kIterations,
+    "Levenberg–Marquardt iterations per outer iteration");
+  v("refinement.ceres.translation_tolerance_m", o.translation_tolerance_m, Bounds{1e-9, 10},
+    "converged when an outer step moves less than this, m ...");
+  v("refinement.ceres.rotation_tolerance_rad", o.rotation_tolerance_rad, Bounds{1e-9, 1},
+    "... and turns less than this, rad");
+  v("refinement.ceres.incidence", o.incidence,
+    "residual weighting by the beam's incidence: none, cosine or gate");
+  v("refinement.ceres.point_association", o.point_association,
+    "point maps: pair a beam with simulated-hit or nearest-endpoint");
+  v("refinement.ceres.max_incidence_rad", o.max_incidence_rad, Bounds{1e-3, M_PI / 2},
+    "gate: beams more grazing than this are dropped, rad");
+  v("refinement.ceres.max_residual_m", o.max_residual_m, Bounds{-1e3, 1e3},
+    "pairs farther apart are left out, m; <= 0: T_Map");
+  v("refinement.ceres.line_fit_neighbours", o.line_fit_neighbours, Bounds{2, 1000},
+    "point maps: nearest points that define the local line of a hit");
+  v("refinement.ceres.line_fit_radius_m", o.line_fit_radius_m, kDistance,
+    "point maps: radius within which those neighbours are taken, m");
+  v("refinement.ceres.max_line_thickness", o.max_line_thickness, Bounds{1e-6, 1},
+    "point maps: a neighbourhood rounder than this (√(λmin/λmax)) defines no line");
+  v("refinement.ceres.degeneracy_ratio", o.degeneracy_ratio, Bounds{0, 1},
+    "degenerate when the weakest direction carries less than this fraction of the strongest");
+}
+
+template <class C, class V>
+void VisitRefinement(C& c, V& v) {
+  v("refinement.method", c.refiner.method, "refinement method: ceres, error-descent or icp");
+  VisitCeres(c, v);
+  auto& descent = c.refiner.error_descent;
+  v("refinement.error_descent.initial_step_m", descent.initial_step_m, kDistance,
+    "translation step of the first level, m");
+  v("refinement.error_descent.initial_step_rad", descent.initial_step_rad, Bounds{1e-6, M_PI},
+    "rotation step of the first level, rad");
+  v("refinement.error_descent.step_levels", descent.step_levels, Bounds{1, 30},
+    "step sizes tried, each half the last");
+  v("refinement.error_descent.max_moves_per_level", descent.max_moves_per_level, kIterations,
+    "a level ends after this many moves");
+  v("refinement.error_descent.diagonal_moves", descent.diagonal_moves,
+    "true: the 26 neighbours of the 3×3×3 stencil; false: the 6 axis neighbours");
+  auto& icp = c.refiner.icp;
+  v("refinement.icp.max_correspondence_distance_m", icp.max_correspondence_distance_m, kDistance,
+    "pairs farther apart are not correspondences, m");
+  v("refinement.icp.max_iterations", icp.max_iterations, kIterations,
+    "reaching it without meeting a criterion is 'not converged'");
+  v("refinement.icp.transformation_epsilon", icp.transformation_epsilon, Bounds{0, 1},
+    "stop when an iteration moves less than this (m², 1 − cos θ)");
+  v("refinement.icp.euclidean_fitness_epsilon", icp.euclidean_fitness_epsilon, Bounds{0, 1},
+    "stop when the mean squared distance changes by less than this, relatively");
+  v("refinement.icp.point_to_plane", icp.point_to_plane,
+    "false: point-to-point; true: point-to-line against map normals");
+}
+
+template <class C, class V>
+void VisitSession(C& c, V& v) {
+  auto& s = c.session;
+  v("session.heading_spread_rad", s.heading_spread_rad, kAngle,
+    "candidates: the prediction turned up to ± this, rad");
+  v("session.heading_step_rad", s.heading_step_rad, Bounds{1e-4, M_PI}, "... by this step, rad");
+  v("session.max_refined_candidates", s.max_refined_candidates, Bounds{1, 1000},
+    "valid candidates refined, best first");
+  v("session.heading_candidates_min_turn_rad", s.heading_candidates_min_turn_rad, kAngle,
+    "turned candidates only when the odometry turned more than this, rad");
+  v("session.localise_translation_m", s.localise_translation_m, Bounds{0, 1e3},
+    "a scan is localised when the odometry moved more than this, m ...");
+  v("session.localise_rotation_rad", s.localise_rotation_rad, kAngle, "... or turned this, rad");
+  v("session.insert_translation_m", s.insert_translation_m, Bounds{0, 1e3},
+    "a validated scan extends the map when the robot moved more than this, m ...");
+  v("session.insert_rotation_rad", s.insert_rotation_rad, kAngle, "... or turned this, rad");
+  v("session.insert_unvalidated", s.insert_unvalidated,
+    "let scans that were not validated extend the map");
+  v("session.free_space_margin_m", s.extension.free_space_margin_m, Bounds{0, 100},
+    "carving: a point more than margin + margin_per_m·r in front of a return is seen through, m; "
+    "0: no carving");
+  v("session.free_space_margin_per_m", s.extension.free_space_margin_per_m, Bounds{0, 1},
+    "carving: the margin's growth per metre of range r");
+  v("session.initial_pose", s.initial_pose, kPosition, kHeading,
+    "T_world_robot of the first iteration, [x m, y m, yaw rad]");
+}
+
+template <class C, class V>
+void VisitLog(C& c, V& v) {
+  v("log.max_range_m", c.log.max_range_m, Bounds{1e-3, 1e4},
+    "CARMEN FLASER readings at or beyond this are no-return values, m");
+  v("log.laser_offset_m", c.log.laser_offset_m, Bounds{-100, 100},
+    "laser distance ahead of the robot base, m; null: the log's PARAM robot_frontlaser_offset");
+  v("log.repair_reversed_odometry", c.log.repair_reversed_odometry,
+    "reverse odometry increments that move forward while ODOM reports a negative velocity");
+}
+
+// Every option, in the order of the help text.
+template <class C, class V>
+void VisitOptions(C& c, V& v) {
+  VisitScoring(c, v);
+  VisitValidation(c, v);
+  VisitRefinement(c, v);
+  VisitSession(c, v);
+  VisitLog(c, v);
+}
+
+// Keys that no longer exist, with where their meaning went.
+struct MovedOption {
+  const char* old_key;
+  const char* new_key;
+};
+inline constexpr MovedOption kMovedOptions[] = {
+    {"session.max_expect_value_m", "validation.max_expect_value_m"},
+    {"refinement.error_descent.alpha_m", "validation.alpha_m"},
+};
+
+}  // namespace scanloc::config_table
