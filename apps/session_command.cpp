@@ -41,6 +41,7 @@ double ProgressOf(const IterationSource& source) {
     return carmen->Progress();
   if (const auto* native = dynamic_cast<const SequenceFileSource*>(&source))
     return native->Progress();
+  if (const auto* bag = dynamic_cast<const RosBagIterationSource*>(&source)) return bag->Progress();
   return 0.0;
 }
 
@@ -55,11 +56,14 @@ void RegisterSessionCommand(CLI::App& app) {
     std::size_t max_scans = 0;
     bool quiet = false;
     bool raw_odometry = false;
+    RosBagOptions bag;
   };
   auto a = std::make_shared<Arguments>();
   CLI::App* command = app.add_subcommand(
       "session", "localise a whole recorded sequence while growing the map from its scans");
-  command->add_option("--log", a->log_path, "CARMEN log (.clf[.gz]) or native sequence (.jsonl)")
+  command
+      ->add_option("--log", a->log_path,
+                   "CARMEN log, ROS 1 bag or native sequence (told by content)")
       ->required()
       ->check(CLI::ExistingFile);
   command->add_option("--line-map", a->line_map_path, "off-line line map")
@@ -76,6 +80,10 @@ void RegisterSessionCommand(CLI::App& app) {
   command->add_flag("--raw-odometry", a->raw_odometry,
                     "use a CARMEN log's odometry as logged, without reversing the increments that "
                     "move forward while ODOM reports a negative velocity");
+  command->add_option("--scan-topic", a->bag.scan_topic,
+                      "ROS bag: LaserScan topic (default /scan)");
+  command->add_option("--odom-topic", a->bag.odometry_topic,
+                      "ROS bag: Odometry topic (default /odom; without it, /tf odom → base_link)");
   a->config.Register(*command);
   command->final_callback([a] {
     Config config = a->config.Build();
@@ -86,7 +94,8 @@ void RegisterSessionCommand(CLI::App& app) {
     CarmenOptions carmen;
     carmen.laser_offset_m = a->laser_offset_m;
     carmen.repair_reversed_odometry = !a->raw_odometry;
-    auto source = OpenIterationSource(a->log_path, carmen);
+    if (a->laser_offset_m) a->bag.mounting = Pose2D(*a->laser_offset_m, 0.0, 0.0);
+    auto source = OpenIterationSource(a->log_path, carmen, a->bag);
     LineMap lines = a->line_map_path.empty() ? LineMap{} : ReadLineMap(a->line_map_path);
     PointMap points = a->point_map_path.empty()
                           ? PointMap(config.point_map)
