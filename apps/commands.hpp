@@ -13,5 +13,6 @@ void RegisterEvaluateCommand(CLI::App& app);
 void RegisterReportCommand(CLI::App& app);
 void RegisterSimulateCommand(CLI::App& app);
 void RegisterCompareCommand(CLI::App& app);
+void RegisterExportGridCommand(CLI::App& app);
 
 }  // namespace scanloc::app

@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   scanloc::app::RegisterReportCommand(app);
   scanloc::app::RegisterSimulateCommand(app);
   scanloc::app::RegisterCompareCommand(app);
+  scanloc::app::RegisterExportGridCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
