@@ -6,6 +6,8 @@ angle_increment and one beam of each kind of no-echo; odometry only on /tf (odom
 0.5, 1.5, 2.5, 3.5 s, so that each scan's odometry is interpolated halfway; the mounting as a chain
 on /tf_static: base_link → base_laser (0.1, 0, 0), base_laser → laser (0.05, 0.02, π/2).
 
+zero_increment.bag: one LaserScan on /scan whose angle_increment is 0 (no layout scanloc can use).
+
 Run with /usr/bin/python3 (Debian's python3-rosbag and the message packages).
 """
 import math
@@ -51,6 +53,16 @@ def tf_odometry(path):
             bag.write("/scan", s, stamp)
 
 
+def zero_increment(path):
+    with rosbag.Bag(path, "w") as bag:
+        s = LaserScan()
+        s.header.stamp, s.header.frame_id = rospy.Time.from_sec(1.0), "laser"
+        s.angle_min, s.angle_increment, s.range_max = -1.0, 0.0, 10.0
+        s.ranges = [1.0, 2.0, 3.0]
+        bag.write("/scan", s, s.header.stamp)
+
+
 if __name__ == "__main__":
     here = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "data")
     tf_odometry(os.path.join(here, "tf_odometry.bag"))
+    zero_increment(os.path.join(here, "zero_increment.bag"))

@@ -133,6 +133,19 @@ TEST(RosBagSource, WrongBaseFrameIsAnErrorNamingTheFrames) {
   EXPECT_THROW(RosBagIterationSource(kTfOdometryBag, options), std::runtime_error);
 }
 
+TEST(RosBagSource, UnusableScanLayoutIsAnErrorNamingTheBagAndMessage) {
+  SKIP_WITHOUT_ROSBAG();
+  RosBagIterationSource bag(SCANLOC_SOURCE_DIR "/tests/data/zero_increment.bag");
+  Iteration iteration;
+  try {
+    bag.Next(iteration);
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("zero_increment.bag:/scan#0"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(RosBagSource, TruncatedBagIsAnErrorNamingIt) {
   SKIP_WITHOUT_ROSBAG();
   const std::string path = testing::TemporaryDir() + "/truncated.bag";

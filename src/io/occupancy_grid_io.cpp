@@ -8,6 +8,7 @@
 
 #include "scanloc/common/atomic_file.hpp"
 #include "scanloc/io/sequence_sources.hpp"
+#include "scanloc/simulation/simulated_scan.hpp"
 
 namespace scanloc {
 namespace {
@@ -74,6 +75,27 @@ GridFromLogResult BuildGridFromLog(const std::string& log_path,
                          [](const StampedPose& p, double stamp) { return p.timestamp_s < stamp; });
     if (it == poses.end() || std::abs(it->timestamp_s - t) > kStampToleranceS) continue;
     builder.AddScan(iteration.scan, mounting.LaserPose(it->pose));
+    ++result.scans_used;
+  }
+  result.grid = builder.Build();
+  return result;
+}
+
+GridFromLogResult BuildGridFromPointMap(const PointMap& map,
+                                        const std::vector<StampedPose>& T_world_robot,
+                                        const LaserMounting& mounting, const ScanLayout& layout,
+                                        const OccupancyGridOptions& options) {
+  OccupancyGridBuilder builder(options);
+  GridFromLogResult result;
+  for (const StampedPose& pose : T_world_robot) {
+    const Pose2D T_world_laser = mounting.LaserPose(pose.pose);
+    const SimulatedScan simulated = SimulateFromPoints(map, layout, T_world_laser);
+    LaserScan scan;
+    scan.layout = simulated.layout;
+    scan.ranges_m = simulated.ranges_m;
+    scan.timestamp_s = pose.timestamp_s;
+    builder.AddScan(scan, T_world_laser);
+    ++result.scans_read;
     ++result.scans_used;
   }
   result.grid = builder.Build();

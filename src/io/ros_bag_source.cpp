@@ -191,8 +191,15 @@ struct RosBagIterationSource::Impl {
     last_bag_time_s = m.getTime().toSec();
     if (m.getTopic() == options.scan_topic) {
       if (auto scan = m.instantiate<sensor_msgs::LaserScan>()) {
-        pending.push_back({ToLaserScan(*scan),
-                           path + ":" + options.scan_topic + "#" + std::to_string(scans_read)});
+        Pending next{ToLaserScan(*scan),
+                     path + ":" + options.scan_topic + "#" + std::to_string(scans_read)};
+        try {
+          next.scan.CheckConsistent();
+        } catch (const std::invalid_argument& e) {
+          throw std::runtime_error("ROS bag " + next.origin +
+                                   ": expected a usable LaserScan: " + e.what());
+        }
+        pending.push_back(std::move(next));
         ++scans_read;
       }
     } else if (odometry_from == OdometryFrom::kTopic) {

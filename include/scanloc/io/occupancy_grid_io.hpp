@@ -7,6 +7,7 @@
 
 #include "scanloc/io/trajectory.hpp"
 #include "scanloc/maps/occupancy_grid.hpp"
+#include "scanloc/maps/point_map.hpp"
 
 namespace scanloc {
 
@@ -39,5 +40,12 @@ GridFromLogResult BuildGridFromLog(const std::string& log_path,
                                    const std::vector<StampedPose>& T_world_robot,
                                    const LaserMounting& mounting,
                                    const OccupancyGridOptions& options = {});
+
+// Without the log: scans simulated from the point map (3.7, with occlusion) at each posture, in
+// `layout`, cast as above. Walls the session never inserted stay unknown.
+GridFromLogResult BuildGridFromPointMap(const PointMap& map,
+                                        const std::vector<StampedPose>& T_world_robot,
+                                        const LaserMounting& mounting, const ScanLayout& layout,
+                                        const OccupancyGridOptions& options = {});
 
 }  // namespace scanloc
