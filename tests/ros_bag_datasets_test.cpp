@@ -54,7 +54,7 @@ TEST_F(RosBagDatasetsTest, AcesAsABagGivesTheCarmenLogsTrajectoryWithin1mm) {
         max_yaw_rad, std::abs(NormalizeAngle(carmen[i].pose.yaw_rad - from_bag[i].pose.yaw_rad)));
   }
   EXPECT_LE(max_dt_s, 1e-6);
-  EXPECT_LE(max_position_m, 1e-3);
+  EXPECT_LE(max_position_m, 1e-3);  // identical at the time of writing (bearings recovered exactly)
   EXPECT_LE(max_yaw_rad, 1e-3);
   std::printf("ACES, first %s scans: bag vs CARMEN max %.3g m, %.3g rad, %.3g s\n", kScans,
               max_position_m, max_yaw_rad, max_dt_s);

@@ -15,6 +15,8 @@
 #include <map>
 #include <set>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 namespace scanloc {
 namespace {
@@ -39,6 +41,26 @@ double FloatAsDecimal(float value) {
   return result;
 }
 
+// Fields of view that laser drivers derive their bearings from (180°, 240°, 270°, 360°).
+constexpr double kCommonFieldsOfViewRad[] = {M_PI, 4.0 * M_PI / 3.0, 1.5 * M_PI, 2.0 * M_PI};
+
+// The double-precision layout a float32 angle_min and angle_increment were rounded from, when they
+// are a common field of view centred on the heading, in n or n − 1 steps (as CARMEN's logs and
+// most drivers have them); otherwise their shortest decimal forms. A session then sees the same
+// bearings from a bag as from the log it was converted from, to the last bit.
+std::pair<double, double> RecoverBearings(float angle_min, float increment, std::size_t n) {
+  for (const double fov : kCommonFieldsOfViewRad)
+    for (const std::size_t steps : {n, n - 1}) {
+      if (steps == 0) continue;
+      const double exact_increment = fov / static_cast<double>(steps);
+      for (const double sign : {1.0, -1.0})
+        if (static_cast<float>(-sign * fov / 2.0) == angle_min &&
+            static_cast<float>(sign * exact_increment) == increment)
+          return {-sign * fov / 2.0, sign * exact_increment};
+    }
+  return {FloatAsDecimal(angle_min), FloatAsDecimal(increment)};
+}
+
 std::string FrameName(const std::string& frame) {
   return !frame.empty() && frame.front() == '/' ? frame.substr(1) : frame;
 }
@@ -56,8 +78,8 @@ LaserScan ToLaserScan(const sensor_msgs::LaserScan& message) {
   const std::size_t n = message.ranges.size();
   scan.timestamp_s = message.header.stamp.toSec();
   scan.layout.beam_count = n;
-  scan.layout.angle_min_rad = FloatAsDecimal(message.angle_min);
-  scan.layout.angle_increment_rad = FloatAsDecimal(message.angle_increment);
+  std::tie(scan.layout.angle_min_rad, scan.layout.angle_increment_rad) =
+      RecoverBearings(message.angle_min, message.angle_increment, n);
   scan.layout.range_min_m = FloatAsDecimal(message.range_min);
   scan.layout.range_max_m = FloatAsDecimal(message.range_max);
   scan.ranges_m.resize(n);
