@@ -28,10 +28,10 @@ TEST(OccupancyGrid, BeamMarksCrossedCellsMissedOnceAndItsEndCellHit) {
   ASSERT_EQ(grid.width, 21u);
   ASSERT_EQ(grid.height, 1u);
   EXPECT_DOUBLE_EQ(grid.origin_m.x(), 0.0);
-  for (std::size_t x = 0; x < 20; ++x) EXPECT_FLOAT_EQ(grid.LogOdds(x, 0), -0.4f) << "cell " << x;
+  for (std::size_t x = 0; x < 20; ++x) EXPECT_FLOAT_EQ(grid.LogOdds(x, 0), -0.2f) << "cell " << x;
   EXPECT_FLOAT_EQ(grid.LogOdds(20, 0), 0.85f);
   EXPECT_EQ(grid.State(20, 0), CellState::kOccupied);  // p = 0.70 > 0.65
-  EXPECT_EQ(grid.State(3, 0), CellState::kUnknown);    // p = 0.40: one miss is not enough
+  EXPECT_EQ(grid.State(3, 0), CellState::kUnknown);    // p = 0.45: one miss is not enough
 }
 
 TEST(OccupancyGrid, RepeatedMissesMakeFreeCellsAndTheClampBoundsLogOdds) {
@@ -40,7 +40,7 @@ TEST(OccupancyGrid, RepeatedMissesMakeFreeCellsAndTheClampBoundsLogOdds) {
   const OccupancyGrid grid = builder.Build();
   std::size_t x = 0, y = 0;
   ASSERT_TRUE(grid.CellOf({0.525, 0.025}, x, y));
-  EXPECT_FLOAT_EQ(grid.LogOdds(x, y), -2.0f);  // 10 × −0.4, clamped at −2
+  EXPECT_FLOAT_EQ(grid.LogOdds(x, y), -2.0f);  // 10 × −0.2
   EXPECT_EQ(grid.State(x, y), CellState::kFree);
   ASSERT_TRUE(grid.CellOf({1.025, 0.025}, x, y));
   EXPECT_FLOAT_EQ(grid.LogOdds(x, y), 3.5f);  // 10 × 0.85, clamped at 3.5
@@ -57,10 +57,11 @@ TEST(OccupancyGrid, BeamsWithoutEchoLeaveEveryCellUnknown) {
 TEST(OccupancyGrid, RoomScansGiveWallsOccupiedAndTheInsideFree) {
   const LineMap room = testing::RectangleRoom(4.0, 3.0);
   OccupancyGridBuilder builder;
-  // Six scans: a cell crossed by all of them reaches 6 × −0.4 (clamped at −2), below free_thresh's
-  // −1.41 (four misses are needed).
+  // Eight scans: a cell crossed by all of them reaches 8 × −0.2, below free_thresh's −1.41 (eight
+  // misses are needed).
   for (const Pose2D& pose : {Pose2D(1.0, 1.0, 0.0), Pose2D(2.0, 1.5, 0.3), Pose2D(3.0, 2.0, -0.2),
-                             Pose2D(1.2, 2.2, 0.1), Pose2D(2.8, 0.8, 0.2), Pose2D(2.2, 1.2, 0.0)})
+                             Pose2D(1.2, 2.2, 0.1), Pose2D(2.8, 0.8, 0.2), Pose2D(2.2, 1.2, 0.0),
+                             Pose2D(1.8, 1.8, -0.1), Pose2D(2.5, 1.9, 0.4)})
     builder.AddScan(testing::NoisyScan(room, pose, 1440, 0.0, 1), pose);
   const OccupancyGrid grid = builder.Build();
   std::size_t x = 0, y = 0, walls = 0, occupied_walls = 0;
