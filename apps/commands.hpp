@@ -14,5 +14,6 @@ void RegisterReportCommand(CLI::App& app);
 void RegisterSimulateCommand(CLI::App& app);
 void RegisterCompareCommand(CLI::App& app);
 void RegisterOptionsCommand(CLI::App& app);
+void RegisterExportGridCommand(CLI::App& app);
 
 }  // namespace scanloc::app

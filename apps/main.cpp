@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   scanloc::app::RegisterSimulateCommand(app);
   scanloc::app::RegisterCompareCommand(app);
   scanloc::app::RegisterOptionsCommand(app);
+  scanloc::app::RegisterExportGridCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -31,10 +31,12 @@ struct Arguments {
   std::size_t max_scans = 0;
   bool quiet = false;
   bool raw_odometry = false;
+  RosBagOptions bag;
 };
 
 void Register(CLI::App& command, Arguments& a) {
-  command.add_option("--log", a.log_path, "CARMEN log (.clf[.gz]) or native sequence (.jsonl)")
+  command
+      .add_option("--log", a.log_path, "CARMEN log, ROS 1 bag or native sequence (told by content)")
       ->required()
       ->check(CLI::ExistingFile);
   command.add_option("--line-map", a.line_map_path, "off-line line map")->check(CLI::ExistingFile);
@@ -45,6 +47,9 @@ void Register(CLI::App& command, Arguments& a) {
       ->expected(3);
   command.add_option("--laser-offset", a.laser_offset_m,
                      "laser distance ahead of the robot base (m); overrides the log's PARAM");
+  command.add_option("--scan-topic", a.bag.scan_topic, "ROS bag: LaserScan topic (default /scan)");
+  command.add_option("--odom-topic", a.bag.odometry_topic,
+                     "ROS bag: Odometry topic (default /odom; without it, /tf odom → base_link)");
   command.add_option("--max-scans", a.max_scans, "stop after this many scans (0: all)");
   command.add_flag("--quiet", a.quiet, "no progress line on stderr");
   command.add_flag("--raw-odometry", a.raw_odometry,
@@ -91,7 +96,9 @@ void Run(const Arguments& a) {
   CarmenOptions carmen = config.log;  // --laser-offset and --raw-odometry override it
   if (a.laser_offset_m) carmen.laser_offset_m = a.laser_offset_m;
   if (a.raw_odometry) carmen.repair_reversed_odometry = false;
-  auto source = OpenIterationSource(a.log_path, carmen);
+  RosBagOptions bag = a.bag;
+  if (a.laser_offset_m) bag.mounting = Pose2D(*a.laser_offset_m, 0.0, 0.0);
+  auto source = OpenIterationSource(a.log_path, carmen, bag);
   LineMap lines = a.line_map_path.empty() ? LineMap{} : ReadLineMap(a.line_map_path);
   PointMap points = a.point_map_path.empty() ? PointMap(config.point_map)
                                              : LoadPointMapPcd(a.point_map_path, config.point_map);

@@ -8,16 +8,12 @@
 
 #include "scanloc/common/atomic_file.hpp"
 #include "scanloc/common/parse_error.hpp"
+#include "scanloc/io/input_format.hpp"
 
 namespace scanloc {
 namespace {
 
 using nlohmann::json;
-
-bool EndsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() &&
-         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
 
 Pose2D ParsePose(const json& value, const std::string& path, std::size_t line, const char* what) {
   if (!value.is_array() || value.size() != 3 || !value[0].is_number() || !value[1].is_number() ||
@@ -224,10 +220,16 @@ void SequenceFileWriter::Close() {
   impl_->closed = true;
 }
 
-std::unique_ptr<IterationSource> OpenIterationSource(const std::string& path,
-                                                     CarmenOptions carmen) {
-  for (const char* suffix : {".clf", ".clf.gz", ".log", ".log.gz"})
-    if (EndsWith(path, suffix)) return std::make_unique<CarmenIterationSource>(path, carmen);
+std::unique_ptr<IterationSource> OpenIterationSource(const std::string& path, CarmenOptions carmen,
+                                                     RosBagOptions bag) {
+  switch (DetectInputFormat(path)) {
+    case InputFormat::kCarmenLog:
+      return std::make_unique<CarmenIterationSource>(path, carmen);
+    case InputFormat::kRosBag:
+      return std::make_unique<RosBagIterationSource>(path, std::move(bag));
+    case InputFormat::kScanSequence:
+      break;
+  }
   return std::make_unique<SequenceFileSource>(path);
 }
 

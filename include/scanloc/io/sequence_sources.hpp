@@ -1,5 +1,6 @@
 #pragma once
-// Iteration sources for sessions: CARMEN logs and the native sequence format.
+// Iteration sources for sessions: CARMEN logs, ROS 1 bags (ros_bag_source.hpp) and the native
+// sequence format.
 //
 // Native sequence (`*.seq.jsonl`): JSON Lines. The first line is a header,
 //     {"scanloc_sequence": 1, "mounting": [x_m, y_m, yaw_rad]}      (mounting optional)
@@ -19,6 +20,7 @@
 
 #include "scanloc/io/carmen_log.hpp"
 #include "scanloc/io/odometry_reversal.hpp"
+#include "scanloc/io/ros_bag_source.hpp"
 #include "scanloc/session/iteration.hpp"
 
 namespace scanloc {
@@ -73,8 +75,10 @@ class SequenceFileWriter {
   std::unique_ptr<Impl> impl_;
 };
 
-// A source for a path: CARMEN for .clf/.log (optionally .gz), native for anything else.
+// A source for a path, by its content whatever its name (DetectInputFormat): CARMEN log, ROS 1 bag
+// or native sequence. Throws std::runtime_error listing the accepted formats for anything else.
 std::unique_ptr<IterationSource> OpenIterationSource(const std::string& path,
-                                                     CarmenOptions carmen = {});
+                                                     CarmenOptions carmen = {},
+                                                     RosBagOptions bag = {});
 
 }  // namespace scanloc

@@ -1,0 +1,162 @@
+#include "scanloc/maps/occupancy_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace scanloc {
+namespace {
+
+double ProbabilityOf(double log_odds) {
+  return 1.0 - 1.0 / (1.0 + std::exp(log_odds));
+}
+
+// Calls visit(x, y) for every cell a segment from `from` to `to` (in cell units) crosses before the
+// cell of `to` (Amanatides & Woo's traversal).
+template <typename Visit>
+void TraverseCells(const Eigen::Vector2d& from, const Eigen::Vector2d& to, Visit&& visit) {
+  long x = static_cast<long>(std::floor(from.x())), y = static_cast<long>(std::floor(from.y()));
+  const long end_x = static_cast<long>(std::floor(to.x()));
+  const long end_y = static_cast<long>(std::floor(to.y()));
+  const Eigen::Vector2d d = to - from;
+  const long step_x = d.x() > 0 ? 1 : -1, step_y = d.y() > 0 ? 1 : -1;
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  const double delta_x = d.x() != 0.0 ? std::abs(1.0 / d.x()) : kInfinity;
+  const double delta_y = d.y() != 0.0 ? std::abs(1.0 / d.y()) : kInfinity;
+  double next_x =
+      d.x() != 0.0 ? ((step_x > 0 ? x + 1 - from.x() : from.x() - x) * delta_x) : kInfinity;
+  double next_y =
+      d.y() != 0.0 ? ((step_y > 0 ? y + 1 - from.y() : from.y() - y) * delta_y) : kInfinity;
+  // At most one step per cell boundary between the two cells.
+  const long steps = std::abs(end_x - x) + std::abs(end_y - y);
+  for (long i = 0; i < steps; ++i) {
+    visit(x, y);
+    if (next_x < next_y) {
+      x += step_x;
+      next_x += delta_x;
+    } else {
+      y += step_y;
+      next_y += delta_y;
+    }
+  }
+}
+
+}  // namespace
+
+void OccupancyGridOptions::Validate() const {
+  auto fail = [](const std::string& what) {
+    throw std::invalid_argument("OccupancyGridOptions: " + what);
+  };
+  if (!(resolution_m > 0.0) || !std::isfinite(resolution_m))
+    fail("resolution_m must be positive, got " + std::to_string(resolution_m));
+  if (!(log_odds_hit > 0.0)) fail("log_odds_hit must be positive");
+  if (!(log_odds_miss < 0.0)) fail("log_odds_miss must be negative");
+  if (!(log_odds_min < 0.0 && log_odds_max > 0.0)) fail("the log-odds clamp must include 0");
+  if (!(free_probability >= 0.0 && free_probability < occupied_probability &&
+        occupied_probability <= 1.0))
+    fail("expected 0 <= free_probability < occupied_probability <= 1");
+}
+
+double OccupancyGrid::Probability(std::size_t x, std::size_t y) const {
+  return ProbabilityOf(LogOdds(x, y));
+}
+
+CellState OccupancyGrid::State(std::size_t x, std::size_t y) const {
+  const double p = Probability(x, y);
+  if (p > occupied_probability) return CellState::kOccupied;
+  if (p < free_probability) return CellState::kFree;
+  return CellState::kUnknown;
+}
+
+bool OccupancyGrid::CellOf(const Eigen::Vector2d& point_m, std::size_t& x, std::size_t& y) const {
+  const Eigen::Vector2d cell = (point_m - origin_m) / resolution_m;
+  if (!(cell.x() >= 0.0 && cell.y() >= 0.0 && cell.x() < static_cast<double>(width) &&
+        cell.y() < static_cast<double>(height)))
+    return false;
+  x = static_cast<std::size_t>(cell.x());
+  y = static_cast<std::size_t>(cell.y());
+  return true;
+}
+
+Eigen::Vector2d OccupancyGrid::CellCentre(std::size_t x, std::size_t y) const {
+  return origin_m + resolution_m * Eigen::Vector2d(x + 0.5, y + 0.5);
+}
+
+OccupancyGridBuilder::OccupancyGridBuilder(OccupancyGridOptions options) : options_(options) {
+  options_.Validate();
+}
+
+void OccupancyGridBuilder::AddScan(const LaserScan& scan, const Pose2D& T_world_laser) {
+  scan.CheckConsistent();
+  origins_.push_back(T_world_laser.Translation());
+  scan_starts_.push_back(endpoints_.size());
+  for (std::size_t i = 0; i < scan.size(); ++i)
+    if (scan.IsValid(i)) endpoints_.push_back(T_world_laser.Transform(scan.Point(i)));
+}
+
+OccupancyGrid OccupancyGridBuilder::Build() const {
+  OccupancyGrid grid;
+  grid.resolution_m = options_.resolution_m;
+  grid.occupied_probability = options_.occupied_probability;
+  grid.free_probability = options_.free_probability;
+  if (origins_.empty()) return grid;
+  Eigen::Vector2d low = origins_.front(), high = origins_.front();
+  for (const auto* points : {&origins_, &endpoints_})
+    for (const Eigen::Vector2d& p : *points) {
+      low = low.cwiseMin(p);
+      high = high.cwiseMax(p);
+    }
+  const double r = options_.resolution_m;
+  const double margin = static_cast<double>(options_.margin_cells);
+  // Cell corners on multiples of the resolution, so that grids of one place line up.
+  grid.origin_m = ((low / r).array().floor() - margin).matrix() * r;
+  grid.width =
+      static_cast<std::size_t>(std::floor((high.x() - grid.origin_m.x()) / r) + 1 + margin);
+  grid.height =
+      static_cast<std::size_t>(std::floor((high.y() - grid.origin_m.y()) / r) + 1 + margin);
+  grid.log_odds.assign(grid.width * grid.height, 0.0f);
+
+  // Each scan votes once per cell: a cell its beams cross and one where they end.
+  std::vector<std::uint32_t> missed(grid.log_odds.size(), 0), hit(grid.log_odds.size(), 0);
+  auto update = [&](std::size_t cell, double change) {
+    grid.log_odds[cell] = static_cast<float>(
+        std::clamp(grid.log_odds[cell] + change, options_.log_odds_min, options_.log_odds_max));
+  };
+  for (std::size_t s = 0; s < origins_.size(); ++s) {
+    const std::uint32_t mark = static_cast<std::uint32_t>(s + 1);
+    const std::size_t end = s + 1 < scan_starts_.size() ? scan_starts_[s + 1] : endpoints_.size();
+    const Eigen::Vector2d from = (origins_[s] - grid.origin_m) / r;
+    for (std::size_t i = scan_starts_[s]; i < end; ++i) {
+      const Eigen::Vector2d to = (endpoints_[i] - grid.origin_m) / r;
+      hit[static_cast<std::size_t>(to.y()) * grid.width + static_cast<std::size_t>(to.x())] = mark;
+      TraverseCells(from, to, [&](long x, long y) {
+        missed[static_cast<std::size_t>(y) * grid.width + static_cast<std::size_t>(x)] = mark;
+      });
+    }
+    for (std::size_t i = scan_starts_[s]; i < end; ++i) {
+      const Eigen::Vector2d to = (endpoints_[i] - grid.origin_m) / r;
+      const std::size_t cell =
+          static_cast<std::size_t>(to.y()) * grid.width + static_cast<std::size_t>(to.x());
+      if (hit[cell] == mark) {
+        update(cell, options_.log_odds_hit);
+        hit[cell] = 0;  // counted once
+        missed[cell] = 0;
+      }
+    }
+    // The crossed cells, minus those where a beam of this scan ended.
+    for (std::size_t i = scan_starts_[s]; i < end; ++i)
+      TraverseCells(from, (endpoints_[i] - grid.origin_m) / r, [&](long x, long y) {
+        const std::size_t cell =
+            static_cast<std::size_t>(y) * grid.width + static_cast<std::size_t>(x);
+        if (missed[cell] == mark) {
+          update(cell, options_.log_odds_miss);
+          missed[cell] = 0;
+        }
+      });
+  }
+  return grid;
+}
+
+}  // namespace scanloc
