@@ -1,14 +1,66 @@
 #include "scanloc/common/atomic_file.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
+#include <ostream>
 #include <stdexcept>
+#include <streambuf>
+#include <vector>
 
 namespace scanloc {
+namespace {
+
+// Bytes gathered before one write(2): large enough that the system calls cost nothing.
+constexpr std::size_t kWriteBufferBytes = 1 << 16;
+
+// A stream buffer over a file descriptor with plain write(2) calls (never mmap, whose failure on a
+// full disk is a SIGBUS): the first failed write remembers errno and puts the stream in error.
+class FileDescriptorBuffer : public std::streambuf {
+ public:
+  explicit FileDescriptorBuffer(int fd) : fd_(fd), buffer_(kWriteBufferBytes) {
+    setp(buffer_.data(), buffer_.data() + buffer_.size());
+  }
+  // errno of the first failure, 0 when every write succeeded.
+  int error() const { return error_; }
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (!Drain()) return traits_type::eof();
+    if (traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
+    *pptr() = traits_type::to_char_type(c);
+    pbump(1);
+    return c;
+  }
+  int sync() override { return Drain() ? 0 : -1; }
+
+ private:
+  bool Drain() {
+    const char* next = pbase();
+    while (error_ == 0 && next < pptr()) {
+      const ssize_t written = ::write(fd_, next, static_cast<std::size_t>(pptr() - next));
+      if (written < 0 && errno == EINTR) continue;
+      if (written <= 0) error_ = written < 0 ? errno : EIO;
+      if (written > 0) next += written;
+    }
+    setp(buffer_.data(), buffer_.data() + buffer_.size());
+    return error_ == 0;
+  }
+
+  int fd_;
+  std::vector<char> buffer_;
+  int error_ = 0;
+};
+
+std::runtime_error WriteError(const std::string& path, int error) {
+  return std::runtime_error("cannot write " + path + ": " + std::strerror(error));
+}
+
+}  // namespace
 
 std::string TemporaryPathFor(const std::string& path) {
   static std::atomic<unsigned> counter{0};
@@ -25,23 +77,32 @@ void CommitTemporaryFile(const std::string& temporary_path, const std::string& p
 
 void WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
   const std::string temporary = TemporaryPathFor(path);
-  {
-    std::ofstream out(temporary);
-    if (!out)
-      throw std::runtime_error("cannot write " + path + " (is its folder there and writable?)");
-    try {
-      write(out);
-    } catch (...) {
-      out.close();
-      std::remove(temporary.c_str());
-      throw;
-    }
-    out.flush();
-    if (!out) {
-      out.close();
-      std::remove(temporary.c_str());
-      throw std::runtime_error("error while writing " + path);
-    }
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw WriteError(path, errno);
+  // Closes and removes the temporary, then reports `error` (an errno) for `path`.
+  const auto abandon = [&](int error) {
+    ::close(fd);
+    std::remove(temporary.c_str());
+    return WriteError(path, error);
+  };
+  FileDescriptorBuffer buffer(fd);
+  std::ostream out(&buffer);
+  try {
+    write(out);
+  } catch (...) {
+    ::close(fd);
+    std::remove(temporary.c_str());
+    throw;
+  }
+  out.flush();
+  if (buffer.error() != 0) throw abandon(buffer.error());
+  if (!out) throw abandon(EIO);
+  // The data is on disk before the rename makes it the file: a crash leaves old or new, not empty.
+  if (::fsync(fd) != 0) throw abandon(errno);
+  if (::close(fd) != 0) {
+    const int error = errno;
+    std::remove(temporary.c_str());
+    throw WriteError(path, error);
   }
   CommitTemporaryFile(temporary, path);
 }

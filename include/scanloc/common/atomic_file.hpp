@@ -7,8 +7,9 @@
 
 namespace scanloc {
 
-// Calls `write` on a stream to `path`.tmp-XXXX and renames it over `path` when the stream is good;
-// throws std::runtime_error (and removes the temporary) otherwise.
+// Calls `write` on a stream to `path`.tmp-XXXX (plain write(2) calls, no mmap), fsyncs it and
+// renames it over `path`. When a write, the fsync or the rename fails (a full disk, say) it removes
+// the temporary and throws std::runtime_error naming `path` and the system's reason (strerror).
 void WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 // Renames `temporary_path` over `path`, throwing std::runtime_error with both names on failure.
