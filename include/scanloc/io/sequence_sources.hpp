@@ -10,7 +10,10 @@
 //      "odometry": [x_m, y_m, yaw_rad],                               (optional, T_odom_robot)
 //      "candidates": [[x_m, y_m, yaw_rad], ...],                      (optional, T_world_robot)
 //      "truth": [x_m, y_m, yaw_rad]}                                  (optional, T_world_robot)
-// Ranges of -1 (or null) carry no echo. Errors name the file and line.
+// Ranges of -1 (or null) carry no echo; a scan has 1 to kMaxBeamsPerScan beams; coordinates are
+// finite and within ±kMaxCoordinateM. Errors name the file and line; a file without a single
+// scan is an error too (ParseError "no scan in FILE" from Next()), so is a line over
+// kMaxLineBytes.
 
 #include <memory>
 #include <optional>
@@ -19,6 +22,7 @@
 
 #include "scanloc/io/carmen_log.hpp"
 #include "scanloc/io/odometry_reversal.hpp"
+#include "scanloc/io/trajectory.hpp"
 #include "scanloc/session/iteration.hpp"
 
 namespace scanloc {
@@ -33,12 +37,16 @@ class CarmenIterationSource : public IterationSource {
   double Progress() const { return reader_.Progress(); }
   // Odometry increments reversed so far (0 when the repair is off).
   std::size_t reversed_increments() const { return reversal_.repaired(); }
+  // Scans so far whose timestamp is not after the previous scan's (backwards or repeated); they
+  // are returned all the same.
+  std::size_t timestamp_warnings() const { return timestamps_.not_increasing(); }
 
  private:
   std::string path_;
   bool repair_;
   CarmenReader reader_;
   OdometryReversalRepair reversal_;
+  TimestampOrder timestamps_;
 };
 
 class SequenceFileSource : public IterationSource {
@@ -50,12 +58,16 @@ class SequenceFileSource : public IterationSource {
   // The ground-truth posture of the last iteration returned, when the sequence has one.
   const std::optional<Pose2D>& truth() const { return truth_; }
   double Progress() const;
+  // Iterations so far whose timestamp is not after the previous one's (backwards or repeated);
+  // they are returned all the same.
+  std::size_t timestamp_warnings() const { return timestamps_.not_increasing(); }
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   LaserMounting mounting_;
   std::optional<Pose2D> truth_;
+  TimestampOrder timestamps_;
 };
 
 // Writes a native sequence, atomically (a temporary file renamed by Close()).
