@@ -68,7 +68,8 @@ void RegisterSessionCommand(CLI::App& app) {
       ->check(CLI::ExistingFile);
   command->add_option("--out", a->out_dir, "run folder to write")->required();
   command->add_option("--initial-pose", a->initial_pose, "first posture x y theta (default 0 0 0)")
-      ->expected(3);
+      ->expected(3)
+      ->check(PlausibleCoordinate());
   command->add_option("--laser-offset", a->laser_offset_m,
                       "laser distance ahead of the robot base (m); overrides the log's PARAM");
   command->add_option("--max-scans", a->max_scans, "stop after this many scans (0: all)");
