@@ -86,6 +86,22 @@ TEST_F(AtomicFileTest, WriteFailureNamesThePathAndReasonAndLeavesNoTemporary) {
   EXPECT_EQ(EntriesInDir(), 0u) << "neither the file nor its temporary";
 }
 
+TEST_F(AtomicFileTest, StreamedWriterLeavesNothingWhenAbandonedAndReportsAFailedWriteAtCommit) {
+  {
+    AtomicFileWriter abandoned(dir_ + "/abandoned.txt");
+    abandoned.stream() << "half a file";
+  }
+  EXPECT_EQ(EntriesInDir(), 0u);
+  const std::string path = dir_ + "/records.jsonl";
+  {
+    const FileSizeLimit limit(64 * 1024);
+    AtomicFileWriter file(path);
+    for (int i = 0; i < 10000; ++i) file.stream() << "{\"record\": " << i << "}\n";
+    ExpectRuntimeErrorWith([&] { file.Commit(); }, {path, "File too large"});
+  }
+  EXPECT_EQ(EntriesInDir(), 0u);
+}
+
 TEST_F(AtomicFileTest, PointMapSaveFailureNamesThePathAndLeavesNoTemporary) {
   PointMap map;
   for (int i = 0; i < 20000; ++i) map.Insert({0.1 * i, 0.0}, 0.1);  // 480 kB of points

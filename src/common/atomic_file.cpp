@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <ostream>
 #include <stdexcept>
 #include <streambuf>
@@ -75,36 +76,65 @@ void CommitTemporaryFile(const std::string& temporary_path, const std::string& p
   }
 }
 
-void WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
-  const std::string temporary = TemporaryPathFor(path);
-  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw WriteError(path, errno);
-  // Closes and removes the temporary, then reports `error` (an errno) for `path`.
-  const auto abandon = [&](int error) {
-    ::close(fd);
-    std::remove(temporary.c_str());
-    return WriteError(path, error);
-  };
-  FileDescriptorBuffer buffer(fd);
-  std::ostream out(&buffer);
-  try {
-    write(out);
-  } catch (...) {
-    ::close(fd);
-    std::remove(temporary.c_str());
-    throw;
+struct AtomicFileWriter::Impl {
+  explicit Impl(const std::string& output_path)
+      : path(output_path),
+        temporary(TemporaryPathFor(output_path)),
+        fd(::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644)),
+        buffer(fd),
+        out(&buffer) {
+    if (fd < 0) throw WriteError(path, errno);
   }
-  out.flush();
-  if (buffer.error() != 0) throw abandon(buffer.error());
-  if (!out) throw abandon(EIO);
+  // Closes and removes the temporary (once).
+  void Abandon() {
+    if (fd < 0) return;
+    ::close(fd);
+    fd = -1;
+    std::remove(temporary.c_str());
+  }
+
+  std::string path, temporary;
+  int fd;
+  FileDescriptorBuffer buffer;
+  std::ostream out;
+};
+
+AtomicFileWriter::AtomicFileWriter(const std::string& path) : impl_(std::make_unique<Impl>(path)) {}
+
+AtomicFileWriter::~AtomicFileWriter() {
+  impl_->Abandon();
+}
+
+std::ostream& AtomicFileWriter::stream() {
+  return impl_->out;
+}
+
+void AtomicFileWriter::Commit() {
+  Impl& f = *impl_;
+  if (f.fd < 0) throw std::logic_error("AtomicFileWriter: " + f.path + " committed twice");
+  f.out.flush();
+  int error = f.buffer.error();
+  if (error == 0 && !f.out) error = EIO;
   // The data is on disk before the rename makes it the file: a crash leaves old or new, not empty.
-  if (::fsync(fd) != 0) throw abandon(errno);
-  if (::close(fd) != 0) {
-    const int error = errno;
-    std::remove(temporary.c_str());
-    throw WriteError(path, error);
+  if (error == 0 && ::fsync(f.fd) != 0) error = errno;
+  if (error != 0) {
+    f.Abandon();
+    throw WriteError(f.path, error);
   }
-  CommitTemporaryFile(temporary, path);
+  const int fd = f.fd;
+  f.fd = -1;
+  if (::close(fd) != 0) {
+    error = errno;
+    std::remove(f.temporary.c_str());
+    throw WriteError(f.path, error);
+  }
+  CommitTemporaryFile(f.temporary, f.path);
+}
+
+void WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  AtomicFileWriter file(path);
+  write(file.stream());  // an exception abandons the temporary
+  file.Commit();
 }
 
 }  // namespace scanloc

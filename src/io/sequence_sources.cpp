@@ -201,27 +201,19 @@ bool SequenceFileSource::Next(Iteration& iteration) {
 }
 
 struct SequenceFileWriter::Impl {
-  std::string path, temporary;
-  std::ofstream out;
-  bool closed = false;
+  explicit Impl(const std::string& path) : file(path) {}
+  AtomicFileWriter file;
 };
 
 SequenceFileWriter::SequenceFileWriter(const std::string& path, const LaserMounting& mounting)
-    : impl_(std::make_unique<Impl>()) {
-  impl_->path = path;
-  impl_->temporary = TemporaryPathFor(path);
-  impl_->out.open(impl_->temporary);
-  if (!impl_->out) throw std::runtime_error("cannot write " + path);
-  impl_->out << json{{"scanloc_sequence", 1}, {"mounting", PoseJson(mounting.T_robot_laser)}}.dump()
-             << '\n';
+    : impl_(std::make_unique<Impl>(path)) {
+  impl_->file.stream()
+      << json{{"scanloc_sequence", 1}, {"mounting", PoseJson(mounting.T_robot_laser)}}.dump()
+      << '\n';
 }
 
-SequenceFileWriter::~SequenceFileWriter() {
-  if (!impl_->closed) {  // abandoned: leave nothing half-written behind
-    impl_->out.close();
-    std::remove(impl_->temporary.c_str());
-  }
-}
+// Abandoned without Close(): the temporary is removed, nothing half-written is left behind.
+SequenceFileWriter::~SequenceFileWriter() = default;
 
 void SequenceFileWriter::Write(const Iteration& iteration, const std::optional<Pose2D>& truth) {
   const LaserScan& s = iteration.scan;
@@ -241,15 +233,11 @@ void SequenceFileWriter::Write(const Iteration& iteration, const std::optional<P
     record["candidates"] = candidates;
   }
   if (truth) record["truth"] = PoseJson(*truth);
-  impl_->out << record.dump() << '\n';
+  impl_->file.stream() << record.dump() << '\n';
 }
 
 void SequenceFileWriter::Close() {
-  impl_->out.flush();
-  if (!impl_->out) throw std::runtime_error("error while writing " + impl_->path);
-  impl_->out.close();
-  CommitTemporaryFile(impl_->temporary, impl_->path);
-  impl_->closed = true;
+  impl_->file.Commit();
 }
 
 std::unique_ptr<IterationSource> OpenIterationSource(const std::string& path,

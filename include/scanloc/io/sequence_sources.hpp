@@ -70,7 +70,8 @@ class SequenceFileSource : public IterationSource {
   TimestampOrder timestamps_;
 };
 
-// Writes a native sequence, atomically (a temporary file renamed by Close()).
+// Writes a native sequence, atomically (a temporary file synced and renamed by Close(), which
+// throws naming the path and the reason when a write failed).
 class SequenceFileWriter {
  public:
   SequenceFileWriter(const std::string& path, const LaserMounting& mounting);
