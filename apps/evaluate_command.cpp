@@ -1,14 +1,50 @@
 // scanloc evaluate: the relations metric of Kümmerle et al. 2009 for a trajectory.
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "scanloc/evaluation/relations_evaluation.hpp"
 #include "scanloc/io/trajectory.hpp"
 
 namespace scanloc::app {
+namespace {
+
+// The time span [first, last] of some timestamps, as text.
+template <class Range, class Time>
+std::string Span(const Range& items, const Time& time) {
+  if (items.empty()) return "none";
+  double first = time(items.front()), last = first;
+  for (const auto& item : items) {
+    first = std::min(first, time(item));
+    last = std::max(last, time(item));
+  }
+  char text[96];
+  std::snprintf(text, sizeof text, "%.6f to %.6f s", first, last);
+  return text;
+}
+
+// The error for an evaluation that matched no relation: both time spans, so that the reader sees
+// whether they overlap at all.
+std::runtime_error NothingMatched(const std::vector<StampedPose>& trajectory,
+                                  const std::vector<Relation>& relations, double tolerance_s) {
+  std::vector<double> relation_times;
+  for (const Relation& r : relations) relation_times.insert(relation_times.end(), {r.t1_s, r.t2_s});
+  return std::runtime_error(
+      "no relation matched the trajectory: " + std::to_string(relations.size()) +
+      " relations, none with both timestamps within " + std::to_string(tolerance_s) +
+      " s of a trajectory pose (trajectory: " + std::to_string(trajectory.size()) + " poses, " +
+      Span(trajectory, [](const StampedPose& p) { return p.timestamp_s; }) +
+      "; relations: " + Span(relation_times, [](double t) { return t; }) +
+      "). Are they from the same log, and is --tolerance large enough?");
+}
+
+}  // namespace
 
 void RegisterEvaluateCommand(CLI::App& app) {
   struct Arguments {
@@ -33,6 +69,10 @@ void RegisterEvaluateCommand(CLI::App& app) {
     RelationsEvaluationOptions options;
     options.timestamp_tolerance_s = a->tolerance_s;
     const RelationsEvaluation e = EvaluateRelations(trajectory, relations, options);
+    if (const std::size_t backwards = CountNonIncreasingTimestamps(trajectory); backwards > 0)
+      std::cerr << "warning: " << a->trajectory_path << ": " << backwards
+                << " timestamps go backwards or repeat the previous one\n";
+    if (e.matched == 0) throw NothingMatched(trajectory, relations, a->tolerance_s);
     auto stats = [](const ErrorStatistics& s) {
       return nlohmann::json{{"mean", s.mean}, {"std", s.std}, {"max", s.max}};
     };

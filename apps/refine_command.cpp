@@ -30,7 +30,8 @@ void RegisterRefineCommand(CLI::App& app) {
   command->add_option("--scan", a->scan_path, "scan file, or CARMEN log (.clf[.gz])")
       ->required()
       ->check(CLI::ExistingFile);
-  command->add_option("--scan-index", a->scan_index, "which scan of a CARMEN log (0-based)");
+  command->add_option("--scan-index", a->scan_index, "which scan of a CARMEN log (0-based)")
+      ->check(NonNegativeInteger());
   command->add_option("--candidates", a->candidates_path, "'x y theta [label]' per line")
       ->required()
       ->check(CLI::ExistingFile);

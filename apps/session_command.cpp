@@ -44,7 +44,8 @@ void Register(CLI::App& command, Arguments& a) {
       ->check(CLI::ExistingFile);
   command.add_option("--out", a.out_dir, "run folder to write")->required();
   command.add_option("--initial-pose", a.initial_pose, "first posture x y theta (default 0 0 0)")
-      ->expected(3);
+      ->expected(3)
+      ->check(PlausibleCoordinate());
   command.add_option("--laser-offset", a.laser_offset_m,
                      "laser distance ahead of the robot base (m); overrides the log's PARAM");
   command.add_option("--scan-topic", a.bag.scan_topic, "ROS bag: LaserScan topic (default /scan)");
@@ -78,6 +79,11 @@ void PrintOutcome(const SessionRun& run, const nlohmann::json& summary, const Ru
             << summary["times_real_time"].get<double>() << "× real time), peak "
             << summary["peak_resident_mb"].get<double>() << " MB"
             << (c.interrupted ? ", interrupted" : "") << "\n";
+  const std::size_t disordered = summary["timestamps_not_increasing"].get<std::size_t>();
+  if (disordered > 0)
+    std::cerr
+        << "warning: " << disordered
+        << " scans have a timestamp that is not after the previous scan's (kept in log order)\n";
   const std::size_t reversed = summary["odometry_reversed_increments"].get<std::size_t>();
   if (reversed > 0)
     std::cout << "odometry: " << reversed

@@ -29,8 +29,8 @@ void RegisterTestCommand(CLI::App& app) {
   command->add_option("--scan", arguments->scan_path, "scan file, or CARMEN log (.clf[.gz])")
       ->required()
       ->check(CLI::ExistingFile);
-  command->add_option("--scan-index", arguments->scan_index,
-                      "which scan of a CARMEN log (0-based)");
+  command->add_option("--scan-index", arguments->scan_index, "which scan of a CARMEN log (0-based)")
+      ->check(NonNegativeInteger());
   command->add_option("--candidates", arguments->candidates_path, "'x y theta [label]' per line")
       ->required()
       ->check(CLI::ExistingFile);

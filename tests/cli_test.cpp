@@ -191,7 +191,7 @@ TEST_F(CliTest, SetOfANumberBeyondADoubleIsRefusedNamingTheKey) {
 TEST_F(CliTest, SessionRefusesAnAbsurdInitialHeadingNamingTheOption) {
   ExpectCleanFailure(Run({"session", "--log", kClassroom + "/classroom.seq.jsonl", "--out",
                           dir_ + "/run", "--quiet", "--initial-pose", "0", "0", "1e20"}),
-                     "session.initial_pose");
+                     "--initial-pose: expected a finite number");
 }
 
 TEST_F(CliTest, OptionsCommandListsEveryKey) {

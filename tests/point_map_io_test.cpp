@@ -1,6 +1,7 @@
 #include "scanloc/maps/point_map_io.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "run_scanloc.hpp"
+#include "scanloc/common/parse_error.hpp"
 #include "test_support.hpp"
 
 namespace scanloc {
@@ -266,6 +269,91 @@ TEST_F(PointMapIoTest, FailedSaveThrowsNamingThePathAndLeavesNoTemporaryFiles) {
   ExpectRuntimeErrorNaming(unreachable, [&] { SavePointMapPcd(map, unreachable); });
   EXPECT_EQ(FilesInDir(), std::vector<std::string>{"occupied"});
   EXPECT_TRUE(fs::is_empty(path));
+}
+
+// PCL's PCDWriter::writeBinary output, the format of every map.pcd written so far: its header,
+// the points as six floats each, then zeros up to one page plus the points' bytes.
+TEST_F(PointMapIoTest, SavedFileHasPclBinaryWritersBytes) {
+  PointMap map(PointMapOptions{});
+  map.Restore({{1.0, 2.0}, {-0.5, 3.25}}, {0.125, 0.25}, {{0.0, 1.0}, {1.0, 0.0}});
+  const std::string path = PathOf("two.pcd");
+  SavePointMapPcd(map, path);
+  const std::string header =
+      "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\n"
+      "FIELDS x y z spacing normal_x normal_y\nSIZE 4 4 4 4 4 4\nTYPE F F F F F F\n"
+      "COUNT 1 1 1 1 1 1\nWIDTH 2\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 2\nDATA binary\n";
+  const float points[12] = {1.0f,  2.0f,  0.0f, 0.125f, 0.0f, 1.0f,
+                            -0.5f, 3.25f, 0.0f, 0.25f,  1.0f, 0.0f};
+  std::string expected = header + std::string(reinterpret_cast<const char*>(points), sizeof points);
+  expected.resize(static_cast<std::size_t>(::getpagesize()) + sizeof points, '\0');
+  EXPECT_EQ(testing::ReadWholeFile(path), expected);
+}
+
+// The 273-byte file of issue 20 announced a billion points of 4 floats; PCL allocated 16.8 GB for
+// them before failing. The header is now checked against the file's size first.
+TEST_F(PointMapIoTest, HeaderAnnouncingMorePointsThanTheFileHoldsIsRefusedWithItsLine) {
+  const std::string header =
+      "VERSION 0.7\nFIELDS x y z spacing\nSIZE 4 4 4 4\nTYPE F F F F\n"
+      "COUNT 1 1 1 1\nWIDTH 1050000000\nHEIGHT 1\nPOINTS 1050000000\n";
+  WriteText("huge-binary.pcd", header + "DATA binary\n" + std::string(64, '\0'));
+  WriteText("huge-ascii.pcd", header + "DATA ascii\n1 2 3 4\n");
+  WriteText("huge-compressed.pcd", header + "DATA binary_compressed\n" +
+                                       std::string("\x10\0\0\0\0\0\0\x7f", 8) +
+                                       std::string(16, '\0'));
+  for (const std::string name : {"huge-binary.pcd", "huge-ascii.pcd", "huge-compressed.pcd"}) {
+    try {
+      LoadPointMapPcd(PathOf(name));
+      ADD_FAILURE() << name << " loaded";
+    } catch (const ParseError& error) {
+      EXPECT_EQ(error.file(), PathOf(name));
+      EXPECT_EQ(error.line(), 8u) << error.what();  // POINTS
+      EXPECT_NE(std::string(error.what()).find("1050000000 points"), std::string::npos)
+          << error.what();
+    }
+  }
+}
+
+TEST_F(PointMapIoTest, HeaderWithInsaneSizeCountOrDimensionsIsRefusedWithItsLine) {
+  const std::string fields = "VERSION 0.7\nFIELDS x y\n";
+  const std::string body = "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n1 2\n";
+  const std::vector<std::pair<std::string, std::size_t>> cases = {
+      {fields + "SIZE 4 3\nTYPE F F\nCOUNT 1 1\n" + body, 3},               // 3-byte value
+      {fields + "SIZE 4 4\nTYPE F F\nCOUNT 1 0\n" + body, 5},               // no value
+      {fields + "SIZE 4 4\nTYPE F F\nCOUNT 1 1000000000\n" + body, 5},      // a billion
+      {fields + "SIZE 4 4\nTYPE F F\nCOUNT 1 1\nWIDTH -1\nHEIGHT 1\n", 6},  // negative
+      {fields + "SIZE 4 4\nTYPE F F\nCOUNT 1 1\nWIDTH 99999999999\n", 6},   // beyond 2^32
+      {fields + "SIZE 4\nTYPE F F\nCOUNT 1 1\n" + body, 3},                 // one SIZE short
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const std::string name = "insane-" + std::to_string(i) + ".pcd";
+    WriteText(name, cases[i].first);
+    try {
+      LoadPointMapPcd(PathOf(name));
+      ADD_FAILURE() << name << " loaded";
+    } catch (const ParseError& error) {
+      EXPECT_EQ(error.line(), cases[i].second) << error.what();
+    }
+  }
+}
+
+TEST_F(PointMapIoTest, PointBeyondAMillionMetresIsRefused) {
+  WriteText("far.pcd",
+            "VERSION 0.7\nFIELDS x y\nSIZE 8 8\nTYPE F F\nCOUNT 1 1\n"
+            "WIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\n1 2\n1e300 0\n");
+  try {
+    LoadPointMapPcd(PathOf("far.pcd"));
+    ADD_FAILURE() << "far.pcd loaded";
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find("point 1"), std::string::npos) << error.what();
+  }
+}
+
+// UBSan: a cell key of a huge coordinate converted a double beyond int64 to an integer.
+TEST(PointMapCellKeyTest, HugeAndNonFiniteCoordinatesDoNotBreakTheMap) {
+  PointMap map;
+  map.Insert({1e300, -1e300}, 0.1);
+  map.Insert({1.0, 1.0}, 0.1);
+  EXPECT_EQ(map.size(), 2u);
 }
 
 }  // namespace

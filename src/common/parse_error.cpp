@@ -1,17 +1,22 @@
 #include "scanloc/common/parse_error.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <sstream>
 
 namespace scanloc {
 
-std::vector<std::string> SplitFields(const std::string& line) {
-  const std::string content = line.substr(0, line.find('#'));
-  std::istringstream stream(content);
+std::vector<std::string> SplitFields(const std::string& line, std::size_t max_fields) {
+  const std::size_t end = std::min(line.find('#'), line.size());
+  constexpr const char* kSpaces = " \t\n\v\f\r";
   std::vector<std::string> fields;
-  for (std::string field; stream >> field;) fields.push_back(field);
+  std::size_t begin = line.find_first_not_of(kSpaces);
+  while (begin < end && fields.size() <= max_fields) {
+    const std::size_t stop = std::min(line.find_first_of(kSpaces, begin), end);
+    fields.push_back(line.substr(begin, stop - begin));
+    begin = line.find_first_not_of(kSpaces, stop);
+  }
   return fields;
 }
 

@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "scanloc/common/bounded_line.hpp"
 #include "scanloc/common/parse_error.hpp"
 
 namespace scanloc {
@@ -82,8 +83,8 @@ std::vector<Relation> ReadRelations(const std::string& path) {
   if (!in) throw std::runtime_error("cannot open " + path);
   std::vector<Relation> relations;
   std::string text;
-  for (std::size_t line = 1; std::getline(in, text); ++line) {
-    const std::vector<std::string> fields = SplitFields(text);
+  for (std::size_t line = 1; ReadBoundedLine(in, text, path, line); ++line) {
+    const std::vector<std::string> fields = SplitFields(text, kRelationFields);
     if (fields.empty()) continue;
     if (fields.size() != kRelationFields)
       throw ParseError(

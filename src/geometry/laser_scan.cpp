@@ -27,6 +27,10 @@ Eigen::Vector2d LaserScan::Point(std::size_t beam) const {
 }
 
 void LaserScan::CheckConsistent() const {
+  if (layout.beam_count > kMaxBeamsPerScan)
+    throw std::invalid_argument("laser scan: " + std::to_string(layout.beam_count) +
+                                " beams, at most " + std::to_string(kMaxBeamsPerScan) +
+                                " expected (kMaxBeamsPerScan)");
   if (layout.beam_count != ranges_m.size())
     throw std::invalid_argument("laser scan: layout has " + std::to_string(layout.beam_count) +
                                 " beams but " + std::to_string(ranges_m.size()) + " ranges");

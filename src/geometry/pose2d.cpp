@@ -35,4 +35,9 @@ std::ostream& operator<<(std::ostream& os, const Pose2D& pose) {
   return os << "(" << pose.x_m << ", " << pose.y_m << ", " << pose.yaw_rad << ")";
 }
 
+bool IsPlausiblePose(const Pose2D& pose) {
+  return std::abs(pose.x_m) <= kMaxCoordinateM && std::abs(pose.y_m) <= kMaxCoordinateM &&
+         std::isfinite(pose.yaw_rad);
+}
+
 }  // namespace scanloc

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "scanloc/common/atomic_file.hpp"
+#include "scanloc/common/bounded_line.hpp"
 #include "scanloc/common/parse_error.hpp"
 
 namespace scanloc {
@@ -15,8 +16,8 @@ std::vector<Candidate> ReadCandidatesFile(const std::string& path) {
   if (!in) throw std::runtime_error("cannot open candidates file " + path);
   std::vector<Candidate> candidates;
   std::string line;
-  for (std::size_t number = 1; std::getline(in, line); ++number) {
-    const auto fields = SplitFields(line);
+  for (std::size_t number = 1; ReadBoundedLine(in, line, path, number); ++number) {
+    const auto fields = SplitFields(line, 4);
     if (fields.empty()) continue;
     if (fields.size() != 3 && fields.size() != 4)
       throw ParseError(path, number,

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "scanloc/common/bounded_line.hpp"
 #include "scanloc/common/parse_error.hpp"
 
 namespace scanloc {
@@ -31,6 +32,9 @@ constexpr std::size_t kParamFields = 5;
 constexpr std::size_t kRobotLaserFixedFields = 24;
 // Index of num_readings in a ROBOTLASER1 message.
 constexpr std::size_t kRobotLaserCountField = 8;
+// The most fields a message may have: a ROBOTLASER1 at the beam cap with a remission per beam.
+// A line with more is refused before a string is made of each field.
+constexpr std::size_t kMaxMessageFields = 2 * kMaxBeamsPerScan + kRobotLaserFixedFields;
 
 // FLASER scans cover half a revolution around the heading.
 constexpr double kFlaserFieldOfViewRad = M_PI;
@@ -71,6 +75,14 @@ class MessageFields {
     if (value < minimum)
       Fail("expected " + what + " >= " + std::to_string(minimum) + ", got " + fields_[i]);
     return static_cast<std::size_t>(value);
+  }
+  // A count of beams: at least `minimum`, at most kMaxBeamsPerScan.
+  std::size_t Beams(std::size_t i, const std::string& what, long minimum) const {
+    const std::size_t value = Count(i, what, minimum);
+    if (value > kMaxBeamsPerScan)
+      Fail("expected " + what + " <= " + std::to_string(kMaxBeamsPerScan) +
+           " (kMaxBeamsPerScan), got " + fields_[i]);
+    return value;
   }
   void ExpectSize(std::size_t expected, const std::string& message) const {
     if (fields_.size() != expected)
@@ -122,9 +134,11 @@ struct CarmenReader::Impl {
   Impl(const Impl&) = delete;
   Impl& operator=(const Impl&) = delete;
 
-  // Reads the next line (without its newline) into `text`; false at the end of the file.
+  // Reads the next line (without its newline) into `text`; false at the end of the file. A line
+  // longer than kMaxLineBytes throws; the next call resumes after it.
   bool ReadLine() {
     text.clear();
+    if (skipping_long_line) SkipRestOfLine();
     while (true) {
       if (gzgets(file, chunk.data(), kReadChunkBytes) == nullptr) {
         int status = Z_OK;
@@ -135,17 +149,36 @@ struct CarmenReader::Impl {
         break;  // a last line without a newline
       }
       text.append(chunk.data());
-      if (!text.empty() && text.back() == '\n') break;
+      const bool complete = !text.empty() && text.back() == '\n';
+      if (text.size() - (complete ? 1 : 0) > kMaxLineBytes) {
+        skipping_long_line = !complete;
+        text.clear();
+        ThrowLineTooLong(path, ++line, kMaxLineBytes);
+      }
+      if (complete) break;
     }
     ++line;
     return true;
   }
 
+  // Reads on, a chunk at a time, to the end of the line that was too long.
+  void SkipRestOfLine() {
+    skipping_long_line = false;
+    while (gzgets(file, chunk.data(), kReadChunkBytes) != nullptr) {
+      const std::size_t length = std::strlen(chunk.data());
+      if (length > 0 && chunk[length - 1] == '\n') return;
+    }
+  }
+
   bool Next(CarmenRecord& record) {
     while (ReadLine()) {
-      fields = SplitFields(text);  // also drops `#` comments
+      fields = SplitFields(text, kMaxMessageFields);  // also drops `#` comments
       if (fields.empty()) continue;
       const MessageFields message(fields, path, line);
+      if (fields.size() > kMaxMessageFields)
+        message.Fail("more than " + std::to_string(kMaxMessageFields) +
+                     " fields in one message: a scan has at most " +
+                     std::to_string(kMaxBeamsPerScan) + " beams (kMaxBeamsPerScan)");
       const std::string& type = fields.front();
       if (type == "FLASER") {
         ParseFlaser(message, record);
@@ -157,6 +190,9 @@ struct CarmenReader::Impl {
         if (type == "PARAM") ParseParam(message);
         continue;  // other message types carry nothing we use
       }
+      if (!IsPlausiblePose(record.odometry))
+        message.Fail("odometry beyond ±" + std::to_string(static_cast<long>(kMaxCoordinateM)) +
+                     " m, expected a planar posture in metres");
       record.line = line;
       if (record.kind == CarmenRecord::Kind::kLaser) {
         record.scan.timestamp_s = record.timestamp_s;
@@ -169,7 +205,7 @@ struct CarmenReader::Impl {
 
   void ParseFlaser(const MessageFields& message, CarmenRecord& record) const {
     if (message.size() < 2) message.Fail("FLASER needs a beam count n");
-    const std::size_t n = message.Count(1, "FLASER beam count n", 2);
+    const std::size_t n = message.Beams(1, "FLASER beam count n", 2);
     message.ExpectSize(n + kFlaserFixedFields, "FLASER with n = " + std::to_string(n));
 
     LaserScan& scan = record.scan;
@@ -201,13 +237,13 @@ struct CarmenReader::Impl {
     if (message.size() <= kRobotLaserCountField + 1)
       message.Fail("ROBOTLASER1 needs at least " + std::to_string(kRobotLaserFixedFields) +
                    " fields, got " + std::to_string(message.size()));
-    const std::size_t n = message.Count(kRobotLaserCountField, "ROBOTLASER1 num_readings", 1);
+    const std::size_t n = message.Beams(kRobotLaserCountField, "ROBOTLASER1 num_readings", 1);
     const std::size_t first_range = kRobotLaserCountField + 1;
     if (first_range + n >= message.size())
       message.Fail("ROBOTLASER1 with num_readings = " + std::to_string(n) + " needs at least " +
                    std::to_string(n + kRobotLaserFixedFields) + " fields, got " +
                    std::to_string(message.size()));
-    const std::size_t m = message.Count(first_range + n, "ROBOTLASER1 num_remissions", 0);
+    const std::size_t m = message.Beams(first_range + n, "ROBOTLASER1 num_remissions", 0);
     message.ExpectSize(n + m + kRobotLaserFixedFields,
                        "ROBOTLASER1 with num_readings = " + std::to_string(n) +
                            " and num_remissions = " + std::to_string(m));
@@ -295,6 +331,7 @@ struct CarmenReader::Impl {
   std::string text;
   std::vector<std::string> fields;
   std::size_t line = 0;
+  bool skipping_long_line = false;  // a line was too long: its rest is skipped by the next read
   double frontlaser_offset_m = 0.0;
   bool seen_laser = false;
   std::uintmax_t file_bytes = 0;
@@ -314,6 +351,10 @@ CarmenReader& CarmenReader::operator=(CarmenReader&&) noexcept = default;
 
 bool CarmenReader::Next(CarmenRecord& record) {
   return impl_->Next(record);
+}
+
+std::size_t CarmenReader::lines_read() const {
+  return impl_->line;
 }
 
 LaserMounting CarmenReader::mounting() const {

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "scanloc/common/atomic_file.hpp"
+#include "scanloc/common/bounded_line.hpp"
 #include "scanloc/common/parse_error.hpp"
 #include "scanloc/io/carmen_log.hpp"
 
@@ -35,12 +36,12 @@ void ReadBlock(std::istream& in, const std::string& path, std::size_t& line_numb
     }
     if (values.size() == count) return;
     std::string line;
-    if (!std::getline(in, line))
+    if (!ReadBoundedLine(in, line, path, line_number + 1))
       throw ParseError(path, start_line,
                        "expected " + std::to_string(count) + " " + what + ", file ended after " +
                            std::to_string(values.size()));
     ++line_number;
-    rest = SplitFields(line);
+    rest = SplitFields(line, count - values.size());
   }
 }
 
@@ -56,9 +57,10 @@ LaserScan ReadScanFile(const std::string& path) {
   std::string last_block;  // the block just read, to name an excess of values after it
   std::string line;
   std::size_t number = 0;
-  while (std::getline(in, line)) {
+  while (ReadBoundedLine(in, line, path, number + 1)) {
     ++number;
-    auto fields = SplitFields(line);
+    // A key line has a few fields; a `ranges` line at most the beam cap of values after its key.
+    auto fields = SplitFields(line, kMaxBeamsPerScan + 1);
     if (fields.empty()) continue;
     const std::string key = fields[0];
     if (!have_header) {
@@ -75,8 +77,10 @@ LaserScan ReadScanFile(const std::string& path) {
     if (key == "beams") {
       if (fields.size() != 2) throw ParseError(path, number, "expected 'beams <count>'");
       beams = ParseInteger(fields[1], path, number, "a beam count");
-      if (*beams < 1 || *beams > 10000000)
-        throw ParseError(path, number, "expected a beam count in [1, 10000000]");
+      if (*beams < 1 || *beams > static_cast<long>(kMaxBeamsPerScan))
+        throw ParseError(path, number,
+                         "expected a beam count in [1, " + std::to_string(kMaxBeamsPerScan) +
+                             "] (kMaxBeamsPerScan)");
     } else if (key == "angle_min_rad") {
       angle_min = value("first bearing in radians");
     } else if (key == "angle_increment_rad") {

@@ -1,5 +1,6 @@
 #include "scanloc/io/sequence_sources.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -7,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scanloc/common/atomic_file.hpp"
+#include "scanloc/common/bounded_line.hpp"
 #include "scanloc/common/parse_error.hpp"
 #include "scanloc/io/input_format.hpp"
 
@@ -15,13 +17,21 @@ namespace {
 
 using nlohmann::json;
 
+// Numbers a line may hold besides a scan's ranges and reflectance at the beam cap: thousands of
+// candidates. A line with more commas is refused before it is parsed (a JSON number costs 16 bytes
+// and more once parsed, a comma one byte of text).
+constexpr std::size_t kMaxOtherNumbersPerLine = 100000;
+constexpr std::size_t kMaxCommasPerLine = 2 * kMaxBeamsPerScan + kMaxOtherNumbersPerLine;
+
 Pose2D ParsePose(const json& value, const std::string& path, std::size_t line, const char* what) {
   if (!value.is_array() || value.size() != 3 || !value[0].is_number() || !value[1].is_number() ||
       !value[2].is_number())
     throw ParseError(path, line, std::string(what) + ": expected [x_m, y_m, yaw_rad]");
   const Pose2D pose{value[0].get<double>(), value[1].get<double>(), value[2].get<double>()};
-  if (!std::isfinite(pose.x_m) || !std::isfinite(pose.y_m) || !std::isfinite(pose.yaw_rad))
-    throw ParseError(path, line, std::string(what) + ": expected finite numbers");
+  if (!IsPlausiblePose(pose))
+    throw ParseError(path, line,
+                     std::string(what) + ": expected finite numbers with |x|, |y| <= " +
+                         std::to_string(static_cast<long>(kMaxCoordinateM)) + " m");
   return pose;
 }
 
@@ -57,6 +67,26 @@ std::vector<double> Values(const json& array, const std::string& path, std::size
   return values;
 }
 
+// The "scan" object of an iteration: its layout and at least one beam.
+void ParseScan(const json& scan, const std::string& path, std::size_t line, LaserScan& s) {
+  s.layout.angle_min_rad = Number(scan, "angle_min_rad", path, line);
+  s.layout.angle_increment_rad = Number(scan, "angle_increment_rad", path, line);
+  s.layout.range_min_m = Number(scan, "range_min_m", path, line, 0.0);
+  s.layout.range_max_m = Number(scan, "range_max_m", path, line, 20.0);
+  if (!scan.contains("ranges")) throw ParseError(path, line, "scan: missing 'ranges'");
+  s.ranges_m = Values(scan["ranges"], path, line, "scan.ranges");
+  if (s.ranges_m.empty())
+    throw ParseError(path, line, "scan: 'ranges' is empty, expected at least one beam");
+  if (scan.contains("reflectance"))
+    s.reflectance = Values(scan["reflectance"], path, line, "scan.reflectance");
+  s.layout.beam_count = s.ranges_m.size();
+  try {
+    s.CheckConsistent();
+  } catch (const std::invalid_argument& e) {
+    throw ParseError(path, line, e.what());
+  }
+}
+
 }  // namespace
 
 CarmenIterationSource::CarmenIterationSource(const std::string& path, CarmenOptions options)
@@ -72,8 +102,12 @@ bool CarmenIterationSource::Next(Iteration& iteration) {
     iteration.scan = std::move(record.scan);
     iteration.odometry = repair_ ? reversal_.Repair(record.odometry) : record.odometry;
     iteration.origin = path_ + ":" + std::to_string(record.line);
+    timestamps_.Add(iteration.timestamp_s);
     return true;
   }
+  if (timestamps_.count() == 0)
+    throw ParseError(path_, std::max<std::size_t>(reader_.lines_read(), 1),
+                     "no scan in " + path_ + ": expected FLASER or ROBOTLASER1 messages");
   return false;
 }
 
@@ -91,7 +125,7 @@ SequenceFileSource::SequenceFileSource(const std::string& path) : impl_(std::mak
   std::error_code error;
   impl_->bytes = std::filesystem::file_size(path, error);
   std::string text;
-  while (std::getline(impl_->in, text)) {
+  while (ReadBoundedLine(impl_->in, text, path, impl_->line + 1)) {
     ++impl_->line;
     if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
     json header;
@@ -121,9 +155,14 @@ double SequenceFileSource::Progress() const {
 bool SequenceFileSource::Next(Iteration& iteration) {
   const std::string& path = impl_->path;
   std::string text;
-  while (std::getline(impl_->in, text)) {
+  while (ReadBoundedLine(impl_->in, text, path, impl_->line + 1)) {
     const std::size_t line = ++impl_->line;
     if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
+    if (static_cast<std::size_t>(std::count(text.begin(), text.end(), ',')) > kMaxCommasPerLine)
+      throw ParseError(path, line,
+                       "more than " + std::to_string(kMaxCommasPerLine) +
+                           " numbers on one line: a scan has at most " +
+                           std::to_string(kMaxBeamsPerScan) + " beams (kMaxBeamsPerScan)");
     json record;
     try {
       record = json::parse(text);
@@ -134,23 +173,8 @@ bool SequenceFileSource::Next(Iteration& iteration) {
       throw ParseError(path, line, "expected an object with a \"scan\" object");
     iteration = Iteration{};
     iteration.timestamp_s = Number(record, "timestamp_s", path, line, 0.0);
-    const json& scan = record["scan"];
-    LaserScan& s = iteration.scan;
-    s.timestamp_s = iteration.timestamp_s;
-    s.layout.angle_min_rad = Number(scan, "angle_min_rad", path, line);
-    s.layout.angle_increment_rad = Number(scan, "angle_increment_rad", path, line);
-    s.layout.range_min_m = Number(scan, "range_min_m", path, line, 0.0);
-    s.layout.range_max_m = Number(scan, "range_max_m", path, line, 20.0);
-    if (!scan.contains("ranges")) throw ParseError(path, line, "scan: missing 'ranges'");
-    s.ranges_m = Values(scan["ranges"], path, line, "scan.ranges");
-    if (scan.contains("reflectance"))
-      s.reflectance = Values(scan["reflectance"], path, line, "scan.reflectance");
-    s.layout.beam_count = s.ranges_m.size();
-    try {
-      s.CheckConsistent();
-    } catch (const std::invalid_argument& e) {
-      throw ParseError(path, line, e.what());
-    }
+    ParseScan(record["scan"], path, line, iteration.scan);
+    iteration.scan.timestamp_s = iteration.timestamp_s;
     if (record.contains("odometry"))
       iteration.odometry = ParsePose(record["odometry"], path, line, "odometry");
     if (record.contains("candidates")) {
@@ -162,34 +186,30 @@ bool SequenceFileSource::Next(Iteration& iteration) {
     truth_.reset();
     if (record.contains("truth")) truth_ = ParsePose(record["truth"], path, line, "truth");
     iteration.origin = path + ":" + std::to_string(line);
+    timestamps_.Add(iteration.timestamp_s);
     return true;
   }
   if (impl_->in.bad()) throw std::runtime_error("error while reading " + path);
+  if (timestamps_.count() == 0)
+    throw ParseError(path, std::max<std::size_t>(impl_->line, 1),
+                     "no scan in " + path + ": expected iterations after the header");
   return false;
 }
 
 struct SequenceFileWriter::Impl {
-  std::string path, temporary;
-  std::ofstream out;
-  bool closed = false;
+  explicit Impl(const std::string& path) : file(path) {}
+  AtomicFileWriter file;
 };
 
 SequenceFileWriter::SequenceFileWriter(const std::string& path, const LaserMounting& mounting)
-    : impl_(std::make_unique<Impl>()) {
-  impl_->path = path;
-  impl_->temporary = TemporaryPathFor(path);
-  impl_->out.open(impl_->temporary);
-  if (!impl_->out) throw std::runtime_error("cannot write " + path);
-  impl_->out << json{{"scanloc_sequence", 1}, {"mounting", PoseJson(mounting.T_robot_laser)}}.dump()
-             << '\n';
+    : impl_(std::make_unique<Impl>(path)) {
+  impl_->file.stream()
+      << json{{"scanloc_sequence", 1}, {"mounting", PoseJson(mounting.T_robot_laser)}}.dump()
+      << '\n';
 }
 
-SequenceFileWriter::~SequenceFileWriter() {
-  if (!impl_->closed) {  // abandoned: leave nothing half-written behind
-    impl_->out.close();
-    std::remove(impl_->temporary.c_str());
-  }
-}
+// Abandoned without Close(): the temporary is removed, nothing half-written is left behind.
+SequenceFileWriter::~SequenceFileWriter() = default;
 
 void SequenceFileWriter::Write(const Iteration& iteration, const std::optional<Pose2D>& truth) {
   const LaserScan& s = iteration.scan;
@@ -209,15 +229,11 @@ void SequenceFileWriter::Write(const Iteration& iteration, const std::optional<P
     record["candidates"] = candidates;
   }
   if (truth) record["truth"] = PoseJson(*truth);
-  impl_->out << record.dump() << '\n';
+  impl_->file.stream() << record.dump() << '\n';
 }
 
 void SequenceFileWriter::Close() {
-  impl_->out.flush();
-  if (!impl_->out) throw std::runtime_error("error while writing " + impl_->path);
-  impl_->out.close();
-  CommitTemporaryFile(impl_->temporary, impl_->path);
-  impl_->closed = true;
+  impl_->file.Commit();
 }
 
 std::unique_ptr<IterationSource> OpenIterationSource(const std::string& path, CarmenOptions carmen,

@@ -102,7 +102,8 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
       {"scans_per_s", wall_s > 0 ? static_cast<double>(c.iterations) / wall_s : 0.0},
       {"times_real_time", wall_s > 0 ? c.span_s() / wall_s : 0.0},
       {"peak_resident_mb", PeakResidentMegabytes()},
-      {"odometry_reversed_increments", source.repaired_odometry_increments()}};
+      {"odometry_reversed_increments", source.repaired_odometry_increments()},
+      {"timestamps_not_increasing", source.timestamp_warnings()}};
   if (c.iterations == 0) summary["problem"] = "the sequence has no scan";
   if (!c.failure.empty()) summary["failed"] = c.failure;
   return summary;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "scanloc/common/atomic_file.hpp"
+#include "scanloc/common/bounded_line.hpp"
 #include "scanloc/common/parse_error.hpp"
 
 namespace scanloc {
@@ -28,9 +29,9 @@ void ForEachDataLine(
   if (!in) throw std::runtime_error("cannot open " + path);
   std::string text;
   std::size_t line = 0;
-  while (std::getline(in, text)) {
-    ++line;
-    const std::vector<std::string> fields = SplitFields(text);
+  // Both formats have at most kTumFields fields: more are reported without being split.
+  while (ReadBoundedLine(in, text, path, ++line)) {
+    const std::vector<std::string> fields = SplitFields(text, kTumFields);
     if (!fields.empty()) parse(fields, line);
   }
   if (in.bad()) throw std::runtime_error("error while reading " + path);
@@ -102,6 +103,12 @@ std::vector<StampedPose> ReadCorrectedPoses(const std::string& path) {
     poses.push_back(stamped);
   });
   return poses;
+}
+
+std::size_t CountNonIncreasingTimestamps(const std::vector<StampedPose>& poses) {
+  TimestampOrder order;
+  for (const StampedPose& stamped : poses) order.Add(stamped.timestamp_s);
+  return order.not_increasing();
 }
 
 }  // namespace scanloc

@@ -34,8 +34,14 @@ using KdTree =
     nanoflann::KDTreeSingleIndexDynamicAdaptor<nanoflann::L2_Simple_Adaptor<double, CloudAdaptor>,
                                                CloudAdaptor, 2, std::uint32_t>;
 
+// Cell indices are clamped to ±2^62 (and NaN goes to 0) so that the conversion to an integer is
+// defined for any coordinate; readers refuse coordinates beyond kMaxCoordinateM long before that.
 std::int64_t CellIndex(double coordinate, double cell_size_m) {
-  return static_cast<std::int64_t>(std::floor(coordinate / cell_size_m));
+  constexpr double kMaxCellIndex = 4611686018427387904.0;  // 2^62
+  const double index = std::floor(coordinate / cell_size_m);
+  if (!(std::abs(index) < kMaxCellIndex))
+    return index > 0.0 ? (1LL << 62) : index < 0.0 ? -(1LL << 62) : 0;
+  return static_cast<std::int64_t>(index);
 }
 
 std::int64_t CellKey(std::int64_t ix, std::int64_t iy) {

@@ -95,7 +95,10 @@ void SvgCanvas::Dots(const std::vector<Eigen::Vector2d>& points, double diameter
   for (const Eigen::Vector2d& p : points) {
     if (!p.allFinite()) continue;
     const long long cx = std::llround(p.x() / cell_px), cy = std::llround(p.y() / cell_px);
-    if (!taken.insert((cx << 32) ^ (cy & 0xffffffffLL)).second) continue;
+    // Unsigned shift: the bits of cx << 32 without shifting a negative number.
+    const auto key = static_cast<long long>((static_cast<unsigned long long>(cx) << 32) ^
+                                            (static_cast<unsigned long long>(cy) & 0xffffffffULL));
+    if (!taken.insert(key).second) continue;
     path << 'M' << SvgNumber(cx * cell_px) << ' ' << SvgNumber(cy * cell_px) << "h0";
   }
   if (taken.empty()) return;
@@ -147,14 +150,18 @@ void SvgCanvas::Close(char element, const char* caller) {
   open_.pop_back();
 }
 
-void SvgCanvas::EndGroup() { Close('g', "EndGroup"); }
+void SvgCanvas::EndGroup() {
+  Close('g', "EndGroup");
+}
 
 void SvgCanvas::BeginLink(const std::string& href) {
   body_ << "<a" << Attribute("href", href) << ">\n";
   open_.push_back('a');
 }
 
-void SvgCanvas::EndLink() { Close('a', "EndLink"); }
+void SvgCanvas::EndLink() {
+  Close('a', "EndLink");
+}
 
 std::string SvgCanvas::Finish() const {
   if (!open_.empty()) throw std::logic_error("SvgCanvas::Finish: a group or link is open");

@@ -22,8 +22,11 @@ class ParseError : public std::runtime_error {
   std::size_t line_;
 };
 
-// Splits a line into whitespace-separated fields, dropping a trailing `#` comment.
-std::vector<std::string> SplitFields(const std::string& line);
+// Splits a line into whitespace-separated fields, dropping a trailing `#` comment. Stops after
+// max_fields + 1 fields: a caller that expects at most max_fields sees that there are too many
+// without a long line costing a string per field.
+std::vector<std::string> SplitFields(const std::string& line,
+                                     std::size_t max_fields = static_cast<std::size_t>(-1) - 1);
 
 // Parses a finite double or throws ParseError naming `what` (e.g. "x1 in metres").
 double ParseFiniteDouble(const std::string& field, const std::string& file, std::size_t line,

@@ -8,6 +8,10 @@
 
 namespace scanloc {
 
+// The most beams a scan may have: readers refuse more. A 360° laser at 0.01° has 36,000 beams;
+// 100,000 leaves room for any real laser while a malformed count cannot claim gigabytes.
+constexpr std::size_t kMaxBeamsPerScan = 100000;
+
 // The angular layout and range limits shared by a real scan and the scans simulated for it.
 struct ScanLayout {
   std::size_t beam_count = 0;        // number of beams
@@ -26,8 +30,8 @@ struct LaserScan {
   double timestamp_s = 0.0;
 
   std::size_t size() const { return ranges_m.size(); }
-  // Throws std::invalid_argument unless the layout is usable and matches the ranges (and the
-  // reflectance, when present).
+  // Throws std::invalid_argument unless the layout is usable (at most kMaxBeamsPerScan beams) and
+  // matches the ranges (and the reflectance, when present).
   void CheckConsistent() const;
   // A range is valid when finite, above range_min_m and below range_max_m.
   bool IsValid(std::size_t beam) const;

@@ -40,6 +40,12 @@ struct Pose2D {
 // Difference of two poses: a ⊖ b = b⁻¹ · a, the motion from b to a in b's frame.
 Pose2D Between(const Pose2D& from, const Pose2D& to);
 
+// The largest coordinate accepted from input: 1,000 km, beyond any map a planar laser builds.
+// Larger values are data errors, and would overflow the point map's integer cell indices.
+constexpr double kMaxCoordinateM = 1e6;
+// True when x and y are finite and within ±kMaxCoordinateM and yaw is finite.
+bool IsPlausiblePose(const Pose2D& pose);
+
 std::ostream& operator<<(std::ostream& os, const Pose2D& pose);
 
 }  // namespace scanloc

@@ -45,7 +45,8 @@ struct CarmenRecord {
 // skipping comments, blank lines and other message types. FLASER's n beams span 180° around the
 // heading from -90°, with a step of π/n for even n (180, 360) and π/(n−1) for odd n (181, 361), the
 // convention of the Freiburg benchmark logs. A malformed message throws ParseError naming file and
-// line; the reader then continues after that line.
+// line; the reader then continues after that line. So do a line over kMaxLineBytes, a scan of more
+// than kMaxBeamsPerScan beams and an odometry beyond ±kMaxCoordinateM.
 class CarmenReader {
  public:
   // Throws std::runtime_error naming the path when the file cannot be opened.
@@ -65,6 +66,8 @@ class CarmenReader {
   // The fraction of the file read so far, in [0, 1] (0 when the size is unknown).
   double Progress() const;
   LaserMounting mounting() const;
+  // Lines read so far.
+  std::size_t lines_read() const;
 
  private:
   struct Impl;

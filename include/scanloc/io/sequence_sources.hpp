@@ -11,7 +11,10 @@
 //      "odometry": [x_m, y_m, yaw_rad],                               (optional, T_odom_robot)
 //      "candidates": [[x_m, y_m, yaw_rad], ...],                      (optional, T_world_robot)
 //      "truth": [x_m, y_m, yaw_rad]}                                  (optional, T_world_robot)
-// Ranges of -1 (or null) carry no echo. Errors name the file and line.
+// Ranges of -1 (or null) carry no echo; a scan has 1 to kMaxBeamsPerScan beams; coordinates are
+// finite and within ±kMaxCoordinateM. Errors name the file and line; a file without a single
+// scan is an error too (ParseError "no scan in FILE" from Next()), so is a line over
+// kMaxLineBytes.
 
 #include <memory>
 #include <optional>
@@ -21,6 +24,7 @@
 #include "scanloc/io/carmen_log.hpp"
 #include "scanloc/io/odometry_reversal.hpp"
 #include "scanloc/io/ros_bag_source.hpp"
+#include "scanloc/io/trajectory.hpp"
 #include "scanloc/session/iteration.hpp"
 
 namespace scanloc {
@@ -35,12 +39,16 @@ class CarmenIterationSource : public IterationSource {
   double Progress() const override { return reader_.Progress(); }
   // Odometry increments reversed so far (0 when the repair is off).
   std::size_t repaired_odometry_increments() const override { return reversal_.repaired(); }
+  // Scans so far whose timestamp is not after the previous scan's (backwards or repeated); they
+  // are returned all the same.
+  std::size_t timestamp_warnings() const override { return timestamps_.not_increasing(); }
 
  private:
   std::string path_;
   bool repair_;
   CarmenReader reader_;
   OdometryReversalRepair reversal_;
+  TimestampOrder timestamps_;
 };
 
 class SequenceFileSource : public IterationSource {
@@ -52,15 +60,20 @@ class SequenceFileSource : public IterationSource {
   // The ground-truth posture of the last iteration returned, when the sequence has one.
   const std::optional<Pose2D>& truth() const { return truth_; }
   double Progress() const override;
+  // Iterations so far whose timestamp is not after the previous one's (backwards or repeated);
+  // they are returned all the same.
+  std::size_t timestamp_warnings() const override { return timestamps_.not_increasing(); }
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   LaserMounting mounting_;
   std::optional<Pose2D> truth_;
+  TimestampOrder timestamps_;
 };
 
-// Writes a native sequence, atomically (a temporary file renamed by Close()).
+// Writes a native sequence, atomically (a temporary file synced and renamed by Close(), which
+// throws naming the path and the reason when a write failed).
 class SequenceFileWriter {
  public:
   SequenceFileWriter(const std::string& path, const LaserMounting& mounting);

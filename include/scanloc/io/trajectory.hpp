@@ -2,6 +2,7 @@
 // Timestamped planar trajectories on disk: the TUM format that evaluation tools read, and the
 // benchmark's corrected poses.
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,27 @@ struct StampedPose {
   double timestamp_s = 0.0;
   Pose2D pose;  // T_world_robot
 };
+
+// Watches a stream of timestamps for ones that do not increase: each timestamp not after its
+// predecessor (gone backwards or repeated) is counted. Readers keep going; commands warn.
+class TimestampOrder {
+ public:
+  void Add(double timestamp_s) {
+    if (count_ > 0 && !(timestamp_s > last_s_)) ++not_increasing_;
+    last_s_ = timestamp_s;
+    ++count_;
+  }
+  std::size_t count() const { return count_; }                    // timestamps seen
+  std::size_t not_increasing() const { return not_increasing_; }  // backwards or repeated
+
+ private:
+  double last_s_ = 0.0;
+  std::size_t count_ = 0;
+  std::size_t not_increasing_ = 0;
+};
+
+// The poses, in file order, whose timestamp is not after the previous pose's.
+std::size_t CountNonIncreasingTimestamps(const std::vector<StampedPose>& poses);
 
 // Writes one `t x y z qx qy qz qw` line per pose (TUM format; z = 0, a yaw-only quaternion) with
 // microsecond timestamps (the logs' resolution) and micrometre positions, atomically (see

@@ -31,6 +31,9 @@ class IterationSource {
   // Odometry increments the source repaired (CARMEN: moving forward while ODOM reported a
   // negative velocity); 0 for sources that repair nothing.
   virtual std::size_t repaired_odometry_increments() const { return 0; }
+  // Scans so far whose timestamp is not after the previous scan's (backwards or repeated): they
+  // are delivered all the same, and the session says how many there were.
+  virtual std::size_t timestamp_warnings() const { return 0; }
 };
 
 }  // namespace scanloc
