@@ -20,8 +20,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         if (!reader.Next(record)) break;
       } catch (const scanloc::ParseError& error) {
         // A malformed message; the next call starts at the following line.
-        scanloc::fuzz::Require(error.line() > last_error_line,
-                               "CarmenReader did not advance after a ParseError");
+        scanloc::fuzz::Require(
+            error.line() > last_error_line,
+            std::string("CarmenReader did not advance after a ParseError: ") + error.what());
         last_error_line = error.line();
         continue;
       }

@@ -31,8 +31,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       try {
         if (!reader.Next(record)) break;
       } catch (const scanloc::ParseError& error) {
-        scanloc::fuzz::Require(error.line() > last_error_line,
-                               "CarmenReader did not advance after a ParseError");
+        scanloc::fuzz::Require(
+            error.line() > last_error_line,
+            std::string("CarmenReader did not advance after a ParseError: ") + error.what());
         last_error_line = error.line();
         continue;
       }

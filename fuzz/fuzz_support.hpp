@@ -59,9 +59,9 @@ void AcceptDocumentedErrors(const Read& read) {
 }
 
 // Aborts with a message when a reader returned something that breaks its contract.
-inline void Require(bool holds, const char* what) {
+inline void Require(bool holds, const std::string& what) {
   if (holds) return;
-  std::fprintf(stderr, "scanloc fuzz: contract broken: %s\n", what);
+  std::fprintf(stderr, "scanloc fuzz: contract broken: %s\n", what.c_str());
   std::abort();
 }
 
