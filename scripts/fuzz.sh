@@ -34,6 +34,8 @@ if [ ${#targets[@]} -eq 0 ]; then
   for dir in fuzz/corpus/*/; do targets+=("$(basename "$dir")"); done
 fi
 artifacts="$PWD/$build_dir/artifacts"
+# UBSan reports with the stack that led there (the build makes them fatal).
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1}"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 failed=()
