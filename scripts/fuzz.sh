@@ -36,8 +36,11 @@ fi
 artifacts="$PWD/$build_dir/artifacts"
 # UBSan reports with the stack that led there (the build makes them fatal).
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1}"
-work=$(mktemp -d)
+# The corpus copies and the harnesses' input files, in memory where possible, removed at exit
+# (a crashed harness cannot remove its input file itself).
+work=$(mktemp -d -p /dev/shm 2>/dev/null || mktemp -d)
 trap 'rm -rf "$work"' EXIT
+export SCANLOC_FUZZ_TMPDIR="$work"
 failed=()
 printf '%-16s %10s %8s %8s %8s  %s\n' target executions exec/s cov ft result
 for target in "${targets[@]}"; do
