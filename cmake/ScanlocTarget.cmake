@@ -7,4 +7,11 @@ function(scanloc_configure_target target)
     target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer)
     target_link_options(${target} PRIVATE -fsanitize=address,undefined)
   endif()
+  if(SCANLOC_FUZZ)
+    # Coverage for libFuzzer and both sanitizers; an undefined behaviour aborts, so that the fuzzer
+    # records it. The fuzz targets link libFuzzer itself (fuzz/CMakeLists.txt).
+    target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link,address,undefined
+                                             -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
+    target_link_options(${target} PRIVATE -fsanitize=address,undefined)
+  endif()
 endfunction()

@@ -138,13 +138,16 @@ struct CarmenReader::Impl {
   // longer than kMaxLineBytes throws; the next call resumes after it.
   bool ReadLine() {
     text.clear();
+    if (broken) return false;  // a corrupt stream ends at its first error
     if (skipping_long_line) SkipRestOfLine();
     while (true) {
       if (gzgets(file, chunk.data(), kReadChunkBytes) == nullptr) {
         int status = Z_OK;
         const char* message = gzerror(file, &status);
-        if (status != Z_OK)
+        if (status != Z_OK) {
+          broken = true;  // zlib cannot go on past it: a caller that resumes reaches the end
           throw ParseError(path, line + 1, std::string("cannot read: ") + message);
+        }
         if (text.empty()) return false;
         break;  // a last line without a newline
       }
@@ -327,6 +330,7 @@ struct CarmenReader::Impl {
   std::string path;
   CarmenOptions options;
   gzFile file = nullptr;
+  bool broken = false;  // a decompression error was met: nothing more can be read
   std::vector<char> chunk;
   std::string text;
   std::vector<std::string> fields;

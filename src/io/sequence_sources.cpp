@@ -134,7 +134,10 @@ SequenceFileSource::SequenceFileSource(const std::string& path) : impl_(std::mak
     } catch (const json::exception&) {
       throw ParseError(path, impl_->line, "expected the header {\"scanloc_sequence\": 1, ...}");
     }
-    if (!header.is_object() || header.value("scanloc_sequence", 0) != 1)
+    // The version is compared as JSON: value<int>() would convert 3e40 (undefined) or throw on
+    // an array.
+    if (!header.is_object() || !header.contains("scanloc_sequence") ||
+        header.at("scanloc_sequence") != json(1))
       throw ParseError(path, impl_->line, "expected the header {\"scanloc_sequence\": 1, ...}");
     if (header.contains("mounting"))
       mounting_.T_robot_laser = ParsePose(header["mounting"], path, impl_->line, "mounting");

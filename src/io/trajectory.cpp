@@ -72,12 +72,15 @@ std::vector<StampedPose> ReadTumTrajectory(const std::string& path) {
     stamped.pose.x_m = ParseFiniteDouble(fields[1], path, line, "x in metres");
     stamped.pose.y_m = ParseFiniteDouble(fields[2], path, line, "y in metres");
     ParseFiniteDouble(fields[3], path, line, "z in metres");
-    const double qx = ParseFiniteDouble(fields[4], path, line, "quaternion qx");
-    const double qy = ParseFiniteDouble(fields[5], path, line, "quaternion qy");
-    const double qz = ParseFiniteDouble(fields[6], path, line, "quaternion qz");
-    const double qw = ParseFiniteDouble(fields[7], path, line, "quaternion qw");
-    if (std::sqrt(qx * qx + qy * qy + qz * qz + qw * qw) < kMinQuaternionNorm)
+    double qx = ParseFiniteDouble(fields[4], path, line, "quaternion qx");
+    double qy = ParseFiniteDouble(fields[5], path, line, "quaternion qy");
+    double qz = ParseFiniteDouble(fields[6], path, line, "quaternion qz");
+    double qw = ParseFiniteDouble(fields[7], path, line, "quaternion qw");
+    // Normalised first: components of 1e200 would overflow the products below to inf and NaN.
+    const double norm = std::hypot(std::hypot(qx, qy), std::hypot(qz, qw));
+    if (!(norm >= kMinQuaternionNorm) || !std::isfinite(norm))
       throw ParseError(path, line, "expected a non-zero quaternion");
+    qx /= norm, qy /= norm, qz /= norm, qw /= norm;
     // The heading of the rotated x axis (ZYX yaw); exact for the yaw-only quaternions we write,
     // and unaffected by the quaternion's scale.
     stamped.pose.yaw_rad =
