@@ -24,16 +24,8 @@ class CandidatesFileTest : public testing::TemporaryDirTest {
   void ExpectParseError(const std::string& content, std::size_t line,
                         const std::string& expected) const {
     const std::string path = Write(content);
-    try {
-      ReadCandidatesFile(path);
-      ADD_FAILURE() << "no ParseError for:\n" << content;
-    } catch (const ParseError& error) {
-      const std::string message = error.what();
-      EXPECT_EQ(error.line(), line) << message;
-      EXPECT_NE(message.find(path + ":" + std::to_string(line) + ":"), std::string::npos)
-          << message;
-      EXPECT_NE(message.find(expected), std::string::npos) << message;
-    }
+    SCOPED_TRACE(content);
+    testing::ExpectParseError([&] { ReadCandidatesFile(path); }, path, line, expected);
   }
 };
 

@@ -368,8 +368,7 @@ LogCounts CountLog(const std::string& path) {
 }
 
 TEST(CarmenReaderDatasets, Fr079HasItsScansOdometryAndFrontLaserOffset) {
-  const std::string dir = testing::DatasetsDir();
-  if (dir.empty()) GTEST_SKIP() << "public datasets not found (set SCANLOC_DATASETS)";
+  SCANLOC_REQUIRE_DATASETS(dir);
   const LogCounts counts = CountLog(dir + "/fr079.clf.gz");
   EXPECT_EQ(counts.lasers, 4934u);
   EXPECT_EQ(counts.odometry, 8951u);
@@ -378,8 +377,7 @@ TEST(CarmenReaderDatasets, Fr079HasItsScansOdometryAndFrontLaserOffset) {
 }
 
 TEST(CarmenReaderDatasets, AcesHasItsScansAndNoLaserOffset) {
-  const std::string dir = testing::DatasetsDir();
-  if (dir.empty()) GTEST_SKIP() << "public datasets not found (set SCANLOC_DATASETS)";
+  SCANLOC_REQUIRE_DATASETS(dir);
   const LogCounts counts = CountLog(dir + "/aces.clf.gz");
   EXPECT_EQ(counts.lasers, 7374u);
   EXPECT_EQ(counts.odometry, 7375u);
@@ -388,8 +386,7 @@ TEST(CarmenReaderDatasets, AcesHasItsScansAndNoLaserOffset) {
 }
 
 TEST(CarmenReaderDatasets, IntelHasItsScansAndOdometry) {
-  const std::string dir = testing::DatasetsDir();
-  if (dir.empty()) GTEST_SKIP() << "public datasets not found (set SCANLOC_DATASETS)";
+  SCANLOC_REQUIRE_DATASETS(dir);
   const LogCounts counts = CountLog(dir + "/intel.clf.gz");
   EXPECT_EQ(counts.lasers, 13631u);
   EXPECT_EQ(counts.odometry, 26915u);
@@ -419,8 +416,7 @@ Repairs CountRepairs(const std::string& path) {
 }
 
 TEST(CarmenReaderDatasets, Fr079OdometryMovingForwardWhileReversingIsRepaired) {
-  const std::string dir = testing::DatasetsDir();
-  if (dir.empty()) GTEST_SKIP() << "public datasets not found (set SCANLOC_DATASETS)";
+  SCANLOC_REQUIRE_DATASETS(dir);
   const Repairs repairs = CountRepairs(dir + "/fr079.clf.gz");
   EXPECT_EQ(repairs.scans, 4934u);
   // Measured: 188 of 4,934 scan increments (328 of 7,314 moving ODOM increments report tv < 0
@@ -430,8 +426,7 @@ TEST(CarmenReaderDatasets, Fr079OdometryMovingForwardWhileReversingIsRepaired) {
 }
 
 TEST(CarmenReaderDatasets, AcesAndIntelOdometryPassesUnchangedBitForBit) {
-  const std::string dir = testing::DatasetsDir();
-  if (dir.empty()) GTEST_SKIP() << "public datasets not found (set SCANLOC_DATASETS)";
+  SCANLOC_REQUIRE_DATASETS(dir);
   for (const char* log : {"/aces.clf.gz", "/intel.clf.gz"}) {
     const Repairs repairs = CountRepairs(dir + log);
     EXPECT_GT(repairs.scans, 7000u) << log;

@@ -60,9 +60,7 @@ class CliTest : public testing::TemporaryDirTest {
   }
 };
 
-bool Contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using testing::Contains;
 
 // The table row of candidate `label`.
 std::string RowOf(const std::string& table, const std::string& label) {

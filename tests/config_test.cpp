@@ -42,9 +42,7 @@ std::string ApplyAndValidateError(const json& patch) {
   return "";
 }
 
-bool Contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using testing::Contains;
 
 class ConfigFileTest : public testing::TemporaryDirTest {
  protected:

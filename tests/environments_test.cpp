@@ -10,9 +10,9 @@
 #include "environment_fixtures.hpp"
 #include "run_scanloc.hpp"
 #include "scanloc/io/environment_files.hpp"
+#include "scanloc/simulation/simulated_scan.hpp"
 #include "scanloc/worlds/environment_simulation.hpp"
 #include "scanloc/worlds/environments.hpp"
-#include "scanloc/simulation/simulated_scan.hpp"
 #include "test_support.hpp"
 
 namespace scanloc {

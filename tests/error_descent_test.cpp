@@ -17,14 +17,10 @@ namespace scanloc {
 namespace {
 
 constexpr double kNoiseSigmaM = 0.02;  // the Acuity's range error
-constexpr unsigned kNoiseSeed = 20240611;
 // (3.11) α, the validation rules' own (ValidationOptions::alpha_m), which Error Descent receives.
 const double kAlpha = ValidationOptions{}.alpha_m;
 
-// The "real" scan: the map seen from the true posture over 720 beams, optionally with noise.
-LaserScan RealScan(const LineMap& map, const Pose2D& T_world_laser_true, double sigma_m) {
-  return testing::NoisyScan(map, T_world_laser_true, 720, sigma_m, kNoiseSeed);
-}
+using testing::RealScan;
 
 std::string Report(const RefinementResult& r) {
   std::ostringstream os;

@@ -129,8 +129,8 @@ TEST_F(ExportGridTest, GridOfAClassroomSessionReadsByMapServerRulesWithWallsOnMa
   EXPECT_NEAR(m.origin_x_m + m.width * r, high.x() + 3 * r, 1.5 * r);
   EXPECT_NEAR(m.origin_y_m + m.height * r, high.y() + 3 * r, 1.5 * r);
   // Map points lie on occupied cells (or their neighbours), and occupied cells on map points. 0.92
-  // and 0.97 at the time of writing: beams at grazing incidence cross wall cells seen from elsewhere
-  // and clear some of them.
+  // and 0.97 at the time of writing: beams at grazing incidence cross wall cells seen from
+  // elsewhere and clear some of them.
   const double fraction_on_walls = static_cast<double>(on_walls) / points.live_size();
   EXPECT_GE(fraction_on_walls, 0.9) << on_walls << " of " << points.live_size();
   std::size_t occupied = 0, occupied_on_points = 0, free_cells = 0;

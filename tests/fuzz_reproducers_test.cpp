@@ -12,15 +12,14 @@
 #include "scanloc/io/sequence_sources.hpp"
 #include "scanloc/io/trajectory.hpp"
 #include "scanloc/maps/point_map_io.hpp"
+#include "test_support.hpp"
 
 namespace scanloc {
 namespace {
 
 const std::string kCrashes = std::string(SCANLOC_SOURCE_DIR) + "/fuzz/crashes/";
 
-bool Contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using testing::Contains;
 
 // C1: a ParseError on a corrupt gzip stream ends the stream; resuming reaches the end.
 TEST(FuzzReproducers, ACorruptGzipLogEndsAfterItsFirstErrorInsteadOfRepeatingIt) {

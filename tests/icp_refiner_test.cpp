@@ -16,12 +16,8 @@ namespace scanloc {
 namespace {
 
 constexpr double kNoiseSigmaM = 0.02;  // the Acuity's range error
-constexpr unsigned kNoiseSeed = 20240611;
 
-// The "real" scan: the map seen from the true posture over 720 beams, optionally with noise.
-LaserScan RealScan(const LineMap& map, const Pose2D& T_world_laser_true, double sigma_m) {
-  return testing::NoisyScan(map, T_world_laser_true, 720, sigma_m, kNoiseSeed);
-}
+using testing::RealScan;
 
 std::string Report(const RefinementResult& r) {
   std::ostringstream os;

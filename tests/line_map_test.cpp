@@ -12,9 +12,7 @@ namespace scanloc {
 namespace {
 
 std::string WriteText(const std::string& dir, const std::string& name, const std::string& text) {
-  const std::string path = dir + "/" + name;
-  std::ofstream(path) << text;
-  return path;
+  return testing::WriteText(dir + "/" + name, text);
 }
 
 TEST(ReadLineMap, ParsesSegmentsCommentsAndBlankLines) {

@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "scanloc/maps/point_map.hpp"
 #include "scanloc/likelihood/posture_scoring.hpp"
+#include "scanloc/maps/point_map.hpp"
 #include "test_support.hpp"
 
 namespace scanloc {

@@ -57,9 +57,7 @@ Outcome RefineHeldOutScans(const std::vector<CorrectedScan>& scans, const Refine
 }
 
 TEST(RefinementOnAces, CeresBeatsIcpAndRecoversMostPerturbedScans) {
-  const std::string datasets = testing::DatasetsDir();
-  if (datasets.empty())
-    GTEST_SKIP() << "public logs not found: set SCANLOC_DATASETS (default ../shared/datasets)";
+  SCANLOC_REQUIRE_DATASETS(datasets);
   const auto scans =
       ReadCorrectedScans(datasets + "/aces.clf.gz", datasets + "/aces.corrected-poses.txt");
   ASSERT_EQ(scans.size(), 440u);

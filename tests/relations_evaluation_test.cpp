@@ -22,11 +22,7 @@ constexpr double kTolerance = 1e-9;
 constexpr double kPointTwoRadDeg = 11.459155902616464;
 constexpr double kPointOneRadDeg = 5.729577951308232;
 
-std::string WriteText(const std::string& path, const std::string& content) {
-  std::ofstream out(path);
-  out << content;
-  return path;
-}
+using testing::WriteText;
 
 // Robot poses at t = 1, 2, 3: it moves 1 m along its heading (+y), then turns by 0.2 rad.
 std::vector<StampedPose> HandTrajectory() {
@@ -190,8 +186,7 @@ RelationsEvaluation ScoreCorrectedPoses(const std::string& dir, const std::strin
 }
 
 TEST(RelationsEvaluationDatasets, IntelCorrectedPosesScoreAboutThreeAndAHalfCentimetres) {
-  const std::string dir = testing::DatasetsDir();
-  if (dir.empty()) GTEST_SKIP() << "public datasets not found (set SCANLOC_DATASETS)";
+  SCANLOC_REQUIRE_DATASETS(dir);
   const RelationsEvaluation evaluation = ScoreCorrectedPoses(dir, "intel");
   // The corrected poses cover a subset of the scans, so most relations stay unmatched.
   EXPECT_GT(evaluation.matched, 0u);
@@ -201,8 +196,7 @@ TEST(RelationsEvaluationDatasets, IntelCorrectedPosesScoreAboutThreeAndAHalfCent
 }
 
 TEST(RelationsEvaluationDatasets, Fr079CorrectedPosesScoreAboutSixCentimetres) {
-  const std::string dir = testing::DatasetsDir();
-  if (dir.empty()) GTEST_SKIP() << "public datasets not found (set SCANLOC_DATASETS)";
+  SCANLOC_REQUIRE_DATASETS(dir);
   const RelationsEvaluation evaluation = ScoreCorrectedPoses(dir, "fr079");
   EXPECT_EQ(evaluation.matched + evaluation.unmatched, 1685u);
   EXPECT_GE(evaluation.translation_m.mean, 0.04);
@@ -210,8 +204,7 @@ TEST(RelationsEvaluationDatasets, Fr079CorrectedPosesScoreAboutSixCentimetres) {
 }
 
 TEST(RelationsEvaluationDatasets, AcesCorrectedPosesAreScoredOnTheFewMatchedRelations) {
-  const std::string dir = testing::DatasetsDir();
-  if (dir.empty()) GTEST_SKIP() << "public datasets not found (set SCANLOC_DATASETS)";
+  SCANLOC_REQUIRE_DATASETS(dir);
   const RelationsEvaluation evaluation = ScoreCorrectedPoses(dir, "aces");
   EXPECT_EQ(evaluation.matched + evaluation.unmatched, 1279u);
 }

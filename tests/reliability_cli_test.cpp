@@ -28,9 +28,7 @@ class ReliabilityCliTest : public testing::TemporaryDirTest {
   }
 };
 
-bool Contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using testing::Contains;
 
 TEST_F(ReliabilityCliTest, EvaluateWithNoRelationMatchedFailsSayingWhy) {
   const std::string trajectory = Trajectory({1.0, 2.0, 3.0});

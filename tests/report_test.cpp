@@ -32,9 +32,7 @@ namespace {
 
 using testing::ReadText;
 
-bool Contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using testing::Contains;
 
 std::size_t Count(const std::string& text, const std::string& part) {
   std::size_t count = 0;

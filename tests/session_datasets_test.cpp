@@ -31,9 +31,8 @@ class SessionOnPublicLog : public testing::TemporaryDirTest {
   }
 };
 
-#define SKIP_WITHOUT_LOGS()           \
-  if (testing::DatasetsDir().empty()) \
-  GTEST_SKIP() << "public logs not found: set SCANLOC_DATASETS (default ../shared/datasets)"
+#define SKIP_WITHOUT_LOGS() \
+  if (testing::DatasetsDir().empty()) GTEST_SKIP() << testing::kNoDatasets
 
 // The bounds every prefix asserts: enough relations scored, a mean under `max_mean_m`, no
 // relation error of half a metre (the session never diverges) and a mean rotation under 1°.

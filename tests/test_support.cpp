@@ -1,5 +1,7 @@
 #include "test_support.hpp"
 
+#include "scanloc/common/parse_error.hpp"
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -70,6 +72,34 @@ std::string TemporaryDirTest::Write(const std::string& name, const std::string& 
   const std::string path = dir_ + "/" + name;
   std::ofstream(path) << content;
   return path;
+}
+
+bool Contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+std::string WriteText(const std::string& path, const std::string& content) {
+  std::ofstream(path, std::ios::binary) << content;
+  return path;
+}
+
+LaserScan RealScan(const LineMap& map, const Pose2D& T_world_laser_true, double sigma_m) {
+  constexpr unsigned kNoiseSeed = 20240611;
+  return NoisyScan(map, T_world_laser_true, 720, sigma_m, kNoiseSeed);
+}
+
+void ExpectParseError(const std::function<void()>& read, const std::string& path, std::size_t line,
+                      const std::string& expected) {
+  try {
+    read();
+    ADD_FAILURE() << "no ParseError for " << path;
+  } catch (const ParseError& error) {
+    const std::string message = error.what();
+    EXPECT_EQ(error.file(), path);
+    EXPECT_EQ(error.line(), line) << message;
+    EXPECT_TRUE(Contains(message, path + ":" + std::to_string(line) + ":")) << message;
+    EXPECT_TRUE(Contains(message, expected)) << message;
+  }
 }
 
 }  // namespace scanloc::testing

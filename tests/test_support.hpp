@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstddef>
+#include <functional>
 #include <string>
 
 #include "scanloc/geometry/laser_scan.hpp"
@@ -31,6 +33,29 @@ LaserScan ScanFromSimulation(const SimulatedScan& simulated);
 // The folder of the public benchmark logs (SCANLOC_DATASETS, else ../shared/datasets), or "" when
 // it does not exist.
 std::string DatasetsDir();
+
+// Why a test that needs the public logs was skipped.
+inline constexpr char kNoDatasets[] =
+    "public logs not found: set SCANLOC_DATASETS (default ../shared/datasets)";
+
+// In a test body: `dir` holds the public logs' folder, or the test is skipped saying why.
+#define SCANLOC_REQUIRE_DATASETS(dir)                        \
+  const std::string dir = ::scanloc::testing::DatasetsDir(); \
+  if (dir.empty()) GTEST_SKIP() << ::scanloc::testing::kNoDatasets
+
+bool Contains(const std::string& text, const std::string& part);
+
+// Writes `content` to `path` and returns the path.
+std::string WriteText(const std::string& path, const std::string& content);
+
+// The "real" scan of the refinement tests: `map` seen from the true posture over 720 beams, with
+// Gaussian noise of sigma_m from a fixed seed.
+LaserScan RealScan(const LineMap& map, const Pose2D& T_world_laser_true, double sigma_m);
+
+// Calls `read` (a reader on `path`) and checks that it throws a ParseError at `line` whose message
+// names the file and the line and contains `expected`.
+void ExpectParseError(const std::function<void()>& read, const std::string& path, std::size_t line,
+                      const std::string& expected);
 
 // A fresh temporary directory for one test.
 std::string TemporaryDir();

@@ -20,11 +20,7 @@ constexpr double kTimestampTolerance = 1e-6;  // the writer's microsecond resolu
 constexpr double kPositionTolerance = 1e-6;   // micrometres
 constexpr double kYawTolerance = 1e-8;        // nine decimals of the quaternion
 
-std::string WriteText(const std::string& path, const std::string& content) {
-  std::ofstream out(path);
-  out << content;
-  return path;
-}
+using testing::WriteText;
 
 std::string ReadText(const std::string& path) {
   std::ifstream in(path);
@@ -160,8 +156,7 @@ TEST(Trajectory, MissingFilesThrowRuntimeErrorWithThePath) {
 }
 
 TEST(TrajectoryDatasets, CorrectedPosesHaveTheDocumentedCounts) {
-  const std::string dir = testing::DatasetsDir();
-  if (dir.empty()) GTEST_SKIP() << "public datasets not found (set SCANLOC_DATASETS)";
+  SCANLOC_REQUIRE_DATASETS(dir);
   EXPECT_EQ(ReadCorrectedPoses(dir + "/intel.corrected-poses.txt").size(), 910u);
   EXPECT_EQ(ReadCorrectedPoses(dir + "/aces.corrected-poses.txt").size(), 440u);
   EXPECT_EQ(ReadCorrectedPoses(dir + "/fr079.corrected-poses.txt").size(), 4791u);
