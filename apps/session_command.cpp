@@ -84,6 +84,22 @@ void PrintOutcome(const SessionRun& run, const nlohmann::json& summary, const Ru
     std::cerr
         << "warning: " << disordered
         << " scans have a timestamp that is not after the previous scan's (kept in log order)\n";
+  const std::size_t zero = summary["timestamps_zero"].get<std::size_t>();
+  if (zero > 0)
+    std::cerr << "warning: " << zero
+              << " scans have a zero timestamp (the trajectory keeps them in log order; matching "
+                 "it by time is ambiguous)\n";
+  const std::size_t late_offsets = summary["laser_offsets_ignored"].get<std::size_t>();
+  if (late_offsets > 0)
+    std::cerr << "warning: " << late_offsets
+              << " PARAM robot_frontlaser_offset lines after the first scan were ignored (the "
+                 "mounting stays the one in force at the first scan)\n";
+  if (!summary["skipped_messages"].empty()) {
+    std::cout << "skipped messages:";
+    for (const auto& [type, count] : summary["skipped_messages"].items())
+      std::cout << " " << type << " " << count.get<std::size_t>();
+    std::cout << "\n";
+  }
   const std::size_t reversed = summary["odometry_reversed_increments"].get<std::size_t>();
   if (reversed > 0)
     std::cout << "odometry: " << reversed
@@ -91,6 +107,15 @@ void PrintOutcome(const SessionRun& run, const nlohmann::json& summary, const Ru
                  "negative velocity; --raw-odometry keeps them)\n";
   std::cout << "wrote " << folder.directory()
             << "/{iterations.jsonl,trajectory.tum,map.pcd,summary.json}\n";
+}
+
+// One line when the log's own saturation code lowers the range limit below log.max_range_m.
+void ReportNoReturn(const IterationSource& source, const CarmenOptions& carmen) {
+  const std::optional<double> recognised_m = source.recognised_no_return_m();
+  if (recognised_m && *recognised_m < carmen.max_range_m)
+    std::cerr << "log: readings at or beyond " << *recognised_m
+              << " m are no-return (the log's saturation code; log.max_range_m is "
+              << carmen.max_range_m << ", log.no_return_m sets it by hand)\n";
 }
 
 void Run(const Arguments& a) {
@@ -105,6 +130,7 @@ void Run(const Arguments& a) {
   RosBagOptions bag = a.bag;
   if (a.laser_offset_m) bag.mounting = Pose2D(*a.laser_offset_m, 0.0, 0.0);
   auto source = OpenIterationSource(a.log_path, carmen, bag);
+  ReportNoReturn(*source, carmen);
   LineMap lines = a.line_map_path.empty() ? LineMap{} : ReadLineMap(a.line_map_path);
   PointMap points = a.point_map_path.empty() ? PointMap(config.point_map)
                                              : LoadPointMapPcd(a.point_map_path, config.point_map);

@@ -208,15 +208,6 @@ TEST(CarmenReader, MountingComesFromParamOrTheOverride) {
   }
 }
 
-TEST(CarmenReader, RejectsALaserOffsetThatChangesAfterTheFirstScan) {
-  const std::string path =
-      WritePlain("late_param.clf", FlaserLine(180, 5.0, 0, 0, 0, 2.0) +
-                                       "PARAM robot_frontlaser_offset 0.0 nohost 0\n"
-                                       "PARAM robot_frontlaser_offset 0.1 nohost 0\n");
-  const std::string message = ParseErrorMessage(path);
-  EXPECT_NE(message.find("late_param.clf:3:"), std::string::npos) << message;
-}
-
 struct LayoutCase {
   std::size_t beams;
   double increment_rad;

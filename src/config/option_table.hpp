@@ -159,7 +159,14 @@ void VisitSession(C& c, V& v) {
 template <class C, class V>
 void VisitLog(C& c, V& v) {
   v("log.max_range_m", c.log.max_range_m, Bounds{1e-3, 1e4},
-    "CARMEN FLASER readings at or beyond this are no-return values, m");
+    "CARMEN FLASER readings at or beyond this are no-return values (with log.no_return_m or "
+    "the recognised code, the lower one stands), m");
+  v("log.no_return_m", c.log.no_return_m, Bounds{1e-3, 1e4},
+    "the log's no-return value by hand: readings at or beyond it carry no echo, m; null: "
+    "recognised from the log (log.detect_no_return)");
+  v("log.detect_no_return", c.log.detect_no_return,
+    "recognise the log's saturation code (a maximum reading repeated over many beams) from its "
+    "first scans and treat readings at or beyond it as no-return");
   v("log.laser_offset_m", c.log.laser_offset_m, Bounds{-100, 100},
     "laser distance ahead of the robot base, m; null: the log's PARAM robot_frontlaser_offset");
   v("log.repair_reversed_odometry", c.log.repair_reversed_odometry,

@@ -7,104 +7,44 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <set>
 #include <stdexcept>
 #include <utility>
 #include <vector>
 
+#include "carmen_messages.hpp"
 #include "scanloc/common/bounded_line.hpp"
 #include "scanloc/common/parse_error.hpp"
+#include "scanloc/io/carmen_saturation.hpp"
 
 namespace scanloc {
 namespace {
 
-// Fields of a FLASER message besides its n ranges: the tag, n, then x y theta odom_x odom_y
-// odom_theta ipc_timestamp hostname logger_timestamp.
-constexpr std::size_t kFlaserFixedFields = 11;
-// The fields of an ODOM message: the tag, x y theta tv rv accel ipc_timestamp hostname
-// logger_timestamp.
-constexpr std::size_t kOdomFields = 10;
-// PARAM name value hostname timestamp.
-constexpr std::size_t kParamFields = 5;
-// Fields of a ROBOTLASER1 message besides its ranges and remissions: the tag, laser_type
-// start_angle fov angular_resolution max_range accuracy remission_mode, num_readings,
-// num_remissions, laser pose (3), robot pose (3), tv rv forward_safety_dist side_safety_dist
-// turn_axis, ipc_timestamp hostname logger_timestamp.
-constexpr std::size_t kRobotLaserFixedFields = 24;
-// Index of num_readings in a ROBOTLASER1 message.
-constexpr std::size_t kRobotLaserCountField = 8;
-// The most fields a message may have: a ROBOTLASER1 at the beam cap with a remission per beam.
-// A line with more is refused before a string is made of each field.
-constexpr std::size_t kMaxMessageFields = 2 * kMaxBeamsPerScan + kRobotLaserFixedFields;
-
-// FLASER scans cover half a revolution around the heading.
-constexpr double kFlaserFieldOfViewRad = M_PI;
-// Slack for a scan whose beams span exactly one revolution.
-constexpr double kRevolutionSlackRad = 1e-6;
+using carmen::LaserMessage;
+using carmen::MessageFields;
 
 // gzgets reads at most this much per call; longer lines are assembled from several calls.
 constexpr int kReadChunkBytes = 64 * 1024;
 // zlib's internal buffer: large enough that decompression is not the bottleneck.
 constexpr unsigned kGzipBufferBytes = 256 * 1024;
 
-constexpr char kRobotFrontlaserOffset[] = "robot_frontlaser_offset";
+// The look-ahead at open: at most this many lines and laser scans, and the readings of at most
+// this many beams, are read to choose the laser message and recognise the saturation code.
+constexpr std::size_t kPreviewLines = 20000;
+constexpr std::size_t kPreviewScans = 200;
+constexpr std::size_t kPreviewReadings = 200000;
 
-// FLASER's bearing step. The Freiburg logs store 180 or 360 beams at π/n (the last beam one step
-// short of +90°) and 181 or 361 beams at π/(n−1) (the last beam at +90°). Other counts follow the
-// same parity rule: even n as π/n, odd n as π/(n−1).
-double FlaserIncrementRad(std::size_t beam_count) {
-  return beam_count % 2 == 0 ? kFlaserFieldOfViewRad / static_cast<double>(beam_count)
-                             : kFlaserFieldOfViewRad / static_cast<double>(beam_count - 1);
-}
+// Skipped message types are counted under their first kMaxTagBytes bytes; beyond
+// kMaxSkippedTypes distinct types (a garbage file), under kOtherTypes.
+constexpr std::size_t kMaxTagBytes = 32;
+constexpr std::size_t kMaxSkippedTypes = 64;
+constexpr char kOtherTypes[] = "(other)";
 
-// The fields of one message with the file and line that errors must name.
-class MessageFields {
- public:
-  MessageFields(const std::vector<std::string>& fields, const std::string& file, std::size_t line)
-      : fields_(fields), file_(file), line_(line) {}
-
-  std::size_t size() const { return fields_.size(); }
-  double Finite(std::size_t i, const std::string& what) const {
-    return ParseFiniteDouble(fields_[i], file_, line_, what);
-  }
-  // Ranges and remissions may be "nan" or "inf": such beams are simply invalid.
-  double Any(std::size_t i, const std::string& what) const {
-    return ParseDouble(fields_[i], file_, line_, what);
-  }
-  std::size_t Count(std::size_t i, const std::string& what, long minimum) const {
-    const long value = ParseInteger(fields_[i], file_, line_, what);
-    if (value < minimum)
-      Fail("expected " + what + " >= " + std::to_string(minimum) + ", got " + fields_[i]);
-    return static_cast<std::size_t>(value);
-  }
-  // A count of beams: at least `minimum`, at most kMaxBeamsPerScan.
-  std::size_t Beams(std::size_t i, const std::string& what, long minimum) const {
-    const std::size_t value = Count(i, what, minimum);
-    if (value > kMaxBeamsPerScan)
-      Fail("expected " + what + " <= " + std::to_string(kMaxBeamsPerScan) +
-           " (kMaxBeamsPerScan), got " + fields_[i]);
-    return value;
-  }
-  void ExpectSize(std::size_t expected, const std::string& message) const {
-    if (fields_.size() != expected)
-      Fail(message + " needs " + std::to_string(expected) + " fields, got " +
-           std::to_string(fields_.size()));
-  }
-  [[noreturn]] void Fail(const std::string& what) const { throw ParseError(file_, line_, what); }
-
- private:
-  const std::vector<std::string>& fields_;
-  const std::string& file_;
-  std::size_t line_;
+// What the look-ahead found.
+struct LogPreview {
+  std::optional<LaserMessage> laser;  // the preferred laser message met; nullopt: none met
+  std::optional<double> saturation_m;
 };
-
-// Names shared by every message, built once rather than per field.
-const std::string kRangeWhat = "range in metres";
-const std::string kRemissionWhat = "remission value";
-const std::string kCoordinateWhat = "coordinate in metres";
-const std::string kAngleWhat = "angle in radians";
-const std::string kVelocityWhat = "velocity";
-const std::string kValueWhat = "number";
-const std::string kTimestampWhat = "timestamp in seconds";
 
 }  // namespace
 
@@ -112,14 +52,27 @@ void CarmenOptions::Validate() const {
   if (!(max_range_m > 0.0) || !std::isfinite(max_range_m))
     throw std::invalid_argument("CarmenOptions: max_range_m must be positive and finite, got " +
                                 std::to_string(max_range_m));
+  if (no_return_m && (!(*no_return_m > 0.0) || !std::isfinite(*no_return_m)))
+    throw std::invalid_argument("CarmenOptions: no_return_m must be positive and finite, got " +
+                                std::to_string(*no_return_m));
   if (laser_offset_m && !std::isfinite(*laser_offset_m))
     throw std::invalid_argument("CarmenOptions: laser_offset_m must be finite");
 }
 
 struct CarmenReader::Impl {
-  Impl(const std::string& log_path, CarmenOptions reader_options)
+  // `preview`: what the look-ahead found; unset for the look-ahead itself, which reads every laser
+  // kind and stops after kPreviewLines lines.
+  Impl(const std::string& log_path, CarmenOptions reader_options,
+       std::optional<LogPreview> preview = std::nullopt)
       : path(log_path), options(reader_options), chunk(kReadChunkBytes) {
     options.Validate();
+    previewing = !preview.has_value();
+    if (preview) {
+      laser = preview->laser;
+      recognised_no_return_m = preview->saturation_m;
+    }
+    no_return_m = options.no_return_m ? options.no_return_m : recognised_no_return_m;
+    flaser_range_max_m = std::min(options.max_range_m, no_return_m.value_or(options.max_range_m));
     errno = 0;
     file = gzopen(path.c_str(), "rb");
     if (file == nullptr)
@@ -139,6 +92,7 @@ struct CarmenReader::Impl {
   bool ReadLine() {
     text.clear();
     if (broken) return false;  // a corrupt stream ends at its first error
+    if (previewing && line >= kPreviewLines) return false;
     if (skipping_long_line) SkipRestOfLine();
     while (true) {
       if (gzgets(file, chunk.data(), kReadChunkBytes) == nullptr) {
@@ -175,156 +129,85 @@ struct CarmenReader::Impl {
 
   bool Next(CarmenRecord& record) {
     while (ReadLine()) {
-      fields = SplitFields(text, kMaxMessageFields);  // also drops `#` comments
+      fields = SplitFields(text, carmen::kMaxMessageFields);  // also drops `#` comments
       if (fields.empty()) continue;
       const MessageFields message(fields, path, line);
-      if (fields.size() > kMaxMessageFields)
-        message.Fail("more than " + std::to_string(kMaxMessageFields) +
+      if (fields.size() > carmen::kMaxMessageFields)
+        message.Fail("more than " + std::to_string(carmen::kMaxMessageFields) +
                      " fields in one message: a scan has at most " +
                      std::to_string(kMaxBeamsPerScan) + " beams (kMaxBeamsPerScan)");
-      const std::string& type = fields.front();
-      if (type == "FLASER") {
-        ParseFlaser(message, record);
-      } else if (type == "ROBOTLASER1") {
-        ParseRobotLaser(message, record);
-      } else if (type == "ODOM") {
-        ParseOdometry(message, record);
-      } else {
-        if (type == "PARAM") ParseParam(message);
-        continue;  // other message types carry nothing we use
-      }
-      if (!IsPlausiblePose(record.odometry))
+      if (!Parse(message, record)) continue;
+      if (record.has_odometry && !IsPlausiblePose(record.odometry))
         message.Fail("odometry beyond ±" + std::to_string(static_cast<long>(kMaxCoordinateM)) +
                      " m, expected a planar posture in metres");
       record.line = line;
       if (record.kind == CarmenRecord::Kind::kLaser) {
         record.scan.timestamp_s = record.timestamp_s;
         seen_laser = true;
+      } else {
+        last_odometry = record.odometry;
       }
       return true;
     }
     return false;
   }
 
-  void ParseFlaser(const MessageFields& message, CarmenRecord& record) const {
-    if (message.size() < 2) message.Fail("FLASER needs a beam count n");
-    const std::size_t n = message.Beams(1, "FLASER beam count n", 2);
-    message.ExpectSize(n + kFlaserFixedFields, "FLASER with n = " + std::to_string(n));
-
-    LaserScan& scan = record.scan;
-    scan.ranges_m.resize(n);
-    for (std::size_t i = 0; i < n; ++i) scan.ranges_m[i] = message.Any(2 + i, kRangeWhat);
-    scan.reflectance.clear();
-    scan.layout = ScanLayout{};
-    scan.layout.beam_count = n;
-    scan.layout.angle_min_rad = -kFlaserFieldOfViewRad / 2.0;
-    scan.layout.angle_increment_rad = FlaserIncrementRad(n);
-    scan.layout.range_min_m = 0.0;
-    scan.layout.range_max_m = options.max_range_m;
-
-    const std::size_t pose = 2 + n;  // x y theta, then odom_x odom_y odom_theta
-    message.Finite(pose + 0, kCoordinateWhat);
-    message.Finite(pose + 1, kCoordinateWhat);
-    message.Finite(pose + 2, kAngleWhat);
-    record.odometry =
-        Pose2D(message.Finite(pose + 3, kCoordinateWhat), message.Finite(pose + 4, kCoordinateWhat),
-               message.Finite(pose + 5, kAngleWhat))
-            .Normalized();
-    record.timestamp_s = message.Finite(pose + 6, kTimestampWhat);
-    message.Finite(pose + 8, kTimestampWhat);  // logger_timestamp, after the hostname
-    record.velocity_mps.reset();
-    record.kind = CarmenRecord::Kind::kLaser;
+  // Fills `record` from a laser or ODOM message; false for the messages that make no record.
+  bool Parse(const MessageFields& message, CarmenRecord& record) {
+    const std::string& type = message[0];
+    if (type == "ODOM") {
+      carmen::ParseOdometry(message, record);
+      return true;
+    }
+    if (type == "PARAM") {
+      ParseParam(message);
+      return false;
+    }
+    const std::optional<LaserMessage> kind = carmen::LaserMessageOf(type);
+    if (!kind || !Reads(*kind)) {
+      CountSkipped(type);
+      return false;
+    }
+    last_laser = *kind;
+    switch (*kind) {
+      case LaserMessage::kFlaser:
+        carmen::ParseFlaser(message, flaser_range_max_m, record);
+        break;
+      case LaserMessage::kRobotLaser1:
+        carmen::ParseRobotLaser(message, no_return_m, record);
+        break;
+      case LaserMessage::kRawLaser1:
+        carmen::ParseRawLaser(message, no_return_m, record);
+        record.has_odometry = last_odometry.has_value();
+        record.odometry = last_odometry.value_or(Pose2D{});
+        break;
+    }
+    return true;
   }
 
-  void ParseRobotLaser(const MessageFields& message, CarmenRecord& record) const {
-    if (message.size() <= kRobotLaserCountField + 1)
-      message.Fail("ROBOTLASER1 needs at least " + std::to_string(kRobotLaserFixedFields) +
-                   " fields, got " + std::to_string(message.size()));
-    const std::size_t n = message.Beams(kRobotLaserCountField, "ROBOTLASER1 num_readings", 1);
-    const std::size_t first_range = kRobotLaserCountField + 1;
-    if (first_range + n >= message.size())
-      message.Fail("ROBOTLASER1 with num_readings = " + std::to_string(n) + " needs at least " +
-                   std::to_string(n + kRobotLaserFixedFields) + " fields, got " +
-                   std::to_string(message.size()));
-    const std::size_t m = message.Beams(first_range + n, "ROBOTLASER1 num_remissions", 0);
-    message.ExpectSize(n + m + kRobotLaserFixedFields,
-                       "ROBOTLASER1 with num_readings = " + std::to_string(n) +
-                           " and num_remissions = " + std::to_string(m));
-
-    message.Finite(1, kValueWhat);  // laser_type
-    const double start_angle_rad = message.Finite(2, kAngleWhat);
-    message.Finite(3, kAngleWhat);  // fov: implied by the resolution and the count
-    const double resolution_rad = message.Finite(4, kAngleWhat);
-    const double max_range_m = message.Finite(5, kRangeWhat);
-    message.Finite(6, kValueWhat);  // accuracy
-    message.Finite(7, kValueWhat);  // remission_mode
-    if (!(resolution_rad > 0.0) ||
-        resolution_rad * static_cast<double>(n) > 2.0 * M_PI + kRevolutionSlackRad)
-      message.Fail(
-          "expected a positive angular_resolution with the beams spanning at most one "
-          "revolution, got " +
-          std::to_string(resolution_rad) + " rad for " + std::to_string(n) + " beams");
-    if (!(max_range_m > 0.0)) message.Fail("expected a positive max_range");
-
-    LaserScan& scan = record.scan;
-    scan.ranges_m.resize(n);
-    for (std::size_t i = 0; i < n; ++i) scan.ranges_m[i] = message.Any(first_range + i, kRangeWhat);
-    // Remissions map onto beams only when there is one per beam.
-    scan.reflectance.resize(m == n ? n : 0);
-    for (std::size_t i = 0; i < m; ++i) {
-      const double remission = message.Any(first_range + n + 1 + i, kRemissionWhat);
-      if (m == n) scan.reflectance[i] = remission;
-    }
-    scan.layout = ScanLayout{};
-    scan.layout.beam_count = n;
-    scan.layout.angle_min_rad = start_angle_rad;
-    scan.layout.angle_increment_rad = resolution_rad;
-    scan.layout.range_min_m = 0.0;
-    scan.layout.range_max_m = max_range_m;
-
-    const std::size_t pose = first_range + n + 1 + m;  // laser pose, then robot pose
-    for (std::size_t i = 0; i < 2; ++i) {
-      message.Finite(pose + 3 * i + 0, kCoordinateWhat);
-      message.Finite(pose + 3 * i + 1, kCoordinateWhat);
-      message.Finite(pose + 3 * i + 2, kAngleWhat);
-    }
-    record.odometry =
-        Pose2D(message.Finite(pose + 3, kCoordinateWhat), message.Finite(pose + 4, kCoordinateWhat),
-               message.Finite(pose + 5, kAngleWhat))
-            .Normalized();
-    record.velocity_mps = message.Finite(pose + 6, kValueWhat);                 // tv
-    for (std::size_t i = 7; i < 11; ++i) message.Finite(pose + i, kValueWhat);  // rv .. turn_axis
-    record.timestamp_s = message.Finite(pose + 11, kTimestampWhat);
-    message.Finite(pose + 13, kTimestampWhat);  // logger_timestamp, after the hostname
-    record.kind = CarmenRecord::Kind::kLaser;
+  // Whether this laser kind is the one read (the look-ahead reads them all; without a kind from
+  // the look-ahead, the first one met is read).
+  bool Reads(LaserMessage kind) {
+    if (previewing) return true;
+    if (!laser) laser = kind;
+    return *laser == kind;
   }
 
-  void ParseOdometry(const MessageFields& message, CarmenRecord& record) const {
-    message.ExpectSize(kOdomFields, "ODOM");
-    record.odometry = Pose2D(message.Finite(1, kCoordinateWhat), message.Finite(2, kCoordinateWhat),
-                             message.Finite(3, kAngleWhat))
-                          .Normalized();
-    record.velocity_mps = message.Finite(4, kVelocityWhat);                // tv
-    for (std::size_t i = 5; i < 7; ++i) message.Finite(i, kVelocityWhat);  // rv accel
-    record.timestamp_s = message.Finite(7, kTimestampWhat);
-    message.Finite(9, kTimestampWhat);  // logger_timestamp, after the hostname
-    record.kind = CarmenRecord::Kind::kOdometry;
-    // Cleared rather than reassigned: the buffers are reused by the next scan.
-    record.scan.ranges_m.clear();
-    record.scan.reflectance.clear();
-    record.scan.layout = ScanLayout{};
-    record.scan.timestamp_s = 0.0;
+  void CountSkipped(const std::string& type) {
+    std::string key = type.substr(0, kMaxTagBytes);
+    if (skipped.size() >= kMaxSkippedTypes && skipped.count(key) == 0) key = kOtherTypes;
+    ++skipped[key];
   }
 
   void ParseParam(const MessageFields& message) {
-    // Other parameters may hold values with spaces; only the laser offset is checked.
-    if (message.size() < 2 || fields[1] != kRobotFrontlaserOffset) return;
-    message.ExpectSize(kParamFields, std::string("PARAM ") + kRobotFrontlaserOffset);
-    const double offset_m = message.Finite(2, kCoordinateWhat);
-    // Scans already returned were interpreted with the old mounting.
-    if (seen_laser && offset_m != frontlaser_offset_m)
-      message.Fail(std::string(kRobotFrontlaserOffset) + " must not change after the first scan");
-    frontlaser_offset_m = offset_m;
+    const std::optional<double> offset_m = carmen::ParseLaserOffsetParam(message);
+    if (!offset_m) return;
+    // Scans already returned were read with the mounting in force then: it stays.
+    if (seen_laser) {
+      if (*offset_m != frontlaser_offset_m) ++ignored_laser_offsets;
+      return;
+    }
+    frontlaser_offset_m = *offset_m;
   }
 
   std::string path;
@@ -339,6 +222,46 @@ struct CarmenReader::Impl {
   double frontlaser_offset_m = 0.0;
   bool seen_laser = false;
   std::uintmax_t file_bytes = 0;
+
+  bool previewing = false;            // the look-ahead: every laser kind, bounded lines
+  std::optional<LaserMessage> laser;  // the laser message read
+  LaserMessage last_laser = LaserMessage::kFlaser;  // the kind of the last laser record
+  std::optional<Pose2D> last_odometry;              // the latest ODOM's pose, for RAWLASER1
+  std::optional<double> recognised_no_return_m;
+  std::optional<double> no_return_m;  // options.no_return_m, else the recognised value
+  double flaser_range_max_m = 0.0;
+  std::map<std::string, std::size_t> skipped;
+  std::size_t ignored_laser_offsets = 0;
+
+  // Reads the log's first lines (kPreviewLines, kPreviewScans): the laser kinds it carries and,
+  // when wanted, its saturation code. Malformed lines are passed over here; the reader reports
+  // them.
+  static LogPreview ReadAhead(const std::string& path, const CarmenOptions& options) {
+    Impl impl(path, options);
+    std::set<LaserMessage> kinds;
+    std::vector<BeamReading> readings;
+    std::size_t scans = 0;
+    CarmenRecord record;
+    while (scans < kPreviewScans) {
+      try {
+        if (!impl.Next(record)) break;
+      } catch (const ParseError&) {
+        continue;  // a corrupt stream makes the next Next() return false
+      }
+      if (record.kind != CarmenRecord::Kind::kLaser) continue;
+      ++scans;
+      kinds.insert(impl.last_laser);
+      const std::vector<double>& ranges = record.scan.ranges_m;
+      for (std::size_t i = 0; i < ranges.size() && readings.size() < kPreviewReadings; ++i)
+        readings.push_back({ranges[i], i});
+    }
+    LogPreview preview;
+    if (!kinds.empty())
+      preview.laser = *kinds.begin();  // the enumeration's order is the preference
+    if (options.detect_no_return && !options.no_return_m)
+      preview.saturation_m = RecogniseSaturation(readings);
+    return preview;
+  }
 };
 
 double CarmenReader::Progress() const {
@@ -347,8 +270,10 @@ double CarmenReader::Progress() const {
   return offset < 0 ? 0.0 : std::min(1.0, static_cast<double>(offset) / impl_->file_bytes);
 }
 
-CarmenReader::CarmenReader(const std::string& path, CarmenOptions options)
-    : impl_(std::make_unique<Impl>(path, std::move(options))) {}
+CarmenReader::CarmenReader(const std::string& path, CarmenOptions options) {
+  const LogPreview preview = Impl::ReadAhead(path, options);
+  impl_ = std::make_unique<Impl>(path, std::move(options), preview);
+}
 CarmenReader::~CarmenReader() = default;
 CarmenReader::CarmenReader(CarmenReader&&) noexcept = default;
 CarmenReader& CarmenReader::operator=(CarmenReader&&) noexcept = default;
@@ -359,6 +284,22 @@ bool CarmenReader::Next(CarmenRecord& record) {
 
 std::size_t CarmenReader::lines_read() const {
   return impl_->line;
+}
+
+std::optional<double> CarmenReader::recognised_no_return_m() const {
+  return impl_->recognised_no_return_m;
+}
+
+double CarmenReader::no_return_m() const {
+  return impl_->flaser_range_max_m;
+}
+
+const std::map<std::string, std::size_t>& CarmenReader::skipped_messages() const {
+  return impl_->skipped;
+}
+
+std::size_t CarmenReader::ignored_laser_offsets() const {
+  return impl_->ignored_laser_offsets;
 }
 
 LaserMounting CarmenReader::mounting() const {

@@ -100,14 +100,16 @@ bool CarmenIterationSource::Next(Iteration& iteration) {
     iteration = Iteration{};
     iteration.timestamp_s = record.timestamp_s;
     iteration.scan = std::move(record.scan);
-    iteration.odometry = repair_ ? reversal_.Repair(record.odometry) : record.odometry;
+    if (record.has_odometry)
+      iteration.odometry = repair_ ? reversal_.Repair(record.odometry) : record.odometry;
     iteration.origin = path_ + ":" + std::to_string(record.line);
     timestamps_.Add(iteration.timestamp_s);
     return true;
   }
   if (timestamps_.count() == 0)
-    throw ParseError(path_, std::max<std::size_t>(reader_.lines_read(), 1),
-                     "no scan in " + path_ + ": expected FLASER or ROBOTLASER1 messages");
+    throw ParseError(
+        path_, std::max<std::size_t>(reader_.lines_read(), 1),
+        "no scan in " + path_ + ": expected FLASER, ROBOTLASER1 or RAWLASER1 messages");
   return false;
 }
 

@@ -33,6 +33,10 @@ void PrintProgress(const SessionRun& run, const IterationSource& source, double 
       map_points, 100.0 * progress, eta_s);
 }
 
+nlohmann::json Nullable(const std::optional<double>& value) {
+  return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
 }  // namespace
 
 void SessionCounts::Add(const IterationRecord& record) {
@@ -103,7 +107,12 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
       {"times_real_time", wall_s > 0 ? c.span_s() / wall_s : 0.0},
       {"peak_resident_mb", PeakResidentMegabytes()},
       {"odometry_reversed_increments", source.repaired_odometry_increments()},
-      {"timestamps_not_increasing", source.timestamp_warnings()}};
+      {"timestamps_not_increasing", source.timestamp_warnings()},
+      {"timestamps_zero", source.zero_timestamps()},
+      {"no_return_m", Nullable(source.no_return_m())},
+      {"no_return_recognised_m", Nullable(source.recognised_no_return_m())},
+      {"skipped_messages", source.skipped_messages()},
+      {"laser_offsets_ignored", source.ignored_laser_offsets()}};
   if (c.iterations == 0) summary["problem"] = "the sequence has no scan";
   if (!c.failure.empty()) summary["failed"] = c.failure;
   return summary;

@@ -29,8 +29,9 @@
 
 namespace scanloc {
 
-// One iteration per laser message (FLASER or ROBOTLASER1), its odometry the message's own, repaired
-// where the log's pose moved forward while the robot reversed (options.repair_reversed_odometry).
+// One iteration per laser message (FLASER, ROBOTLASER1 or RAWLASER1: CarmenReader), its odometry
+// the message's own (RAWLASER1: the latest ODOM's), repaired where the log's pose moved forward
+// while the robot reversed (options.repair_reversed_odometry).
 class CarmenIterationSource : public IterationSource {
  public:
   explicit CarmenIterationSource(const std::string& path, CarmenOptions options = {});
@@ -42,6 +43,15 @@ class CarmenIterationSource : public IterationSource {
   // Scans so far whose timestamp is not after the previous scan's (backwards or repeated); they
   // are returned all the same.
   std::size_t timestamp_warnings() const override { return timestamps_.not_increasing(); }
+  std::size_t zero_timestamps() const override { return timestamps_.zero(); }
+  std::optional<double> no_return_m() const override { return reader_.no_return_m(); }
+  std::optional<double> recognised_no_return_m() const override {
+    return reader_.recognised_no_return_m();
+  }
+  std::map<std::string, std::size_t> skipped_messages() const override {
+    return reader_.skipped_messages();
+  }
+  std::size_t ignored_laser_offsets() const override { return reader_.ignored_laser_offsets(); }
 
  private:
   std::string path_;
@@ -63,6 +73,7 @@ class SequenceFileSource : public IterationSource {
   // Iterations so far whose timestamp is not after the previous one's (backwards or repeated);
   // they are returned all the same.
   std::size_t timestamp_warnings() const override { return timestamps_.not_increasing(); }
+  std::size_t zero_timestamps() const override { return timestamps_.zero(); }
 
  private:
   struct Impl;

@@ -21,16 +21,19 @@ class TimestampOrder {
  public:
   void Add(double timestamp_s) {
     if (count_ > 0 && !(timestamp_s > last_s_)) ++not_increasing_;
+    if (timestamp_s == 0.0) ++zero_;
     last_s_ = timestamp_s;
     ++count_;
   }
   std::size_t count() const { return count_; }                    // timestamps seen
   std::size_t not_increasing() const { return not_increasing_; }  // backwards or repeated
+  std::size_t zero() const { return zero_; }                      // exactly 0
 
  private:
   double last_s_ = 0.0;
   std::size_t count_ = 0;
   std::size_t not_increasing_ = 0;
+  std::size_t zero_ = 0;
 };
 
 // The poses, in file order, whose timestamp is not after the previous pose's.

@@ -1,6 +1,8 @@
 #pragma once
 // One iteration of a session, as a sequence source delivers it, and the sources' interface.
 
+#include <cstddef>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -34,6 +36,16 @@ class IterationSource {
   // Scans so far whose timestamp is not after the previous scan's (backwards or repeated): they
   // are delivered all the same, and the session says how many there were.
   virtual std::size_t timestamp_warnings() const { return 0; }
+  // Scans so far with a timestamp of exactly 0 (a log whose clock was not recorded).
+  virtual std::size_t zero_timestamps() const { return 0; }
+  // Readers of logs with a no-return code (CARMEN): the range limit in force for the laser, m, and
+  // the saturation code recognised in the log (nullopt: none, or not looked for).
+  virtual std::optional<double> no_return_m() const { return std::nullopt; }
+  virtual std::optional<double> recognised_no_return_m() const { return std::nullopt; }
+  // Messages of the input skipped so far, by type (CARMEN: NEFF, TRUEPOS, RAWLASER2, ...).
+  virtual std::map<std::string, std::size_t> skipped_messages() const { return {}; }
+  // Laser mountings announced after the first scan and ignored (CARMEN's late PARAM lines).
+  virtual std::size_t ignored_laser_offsets() const { return 0; }
 };
 
 }  // namespace scanloc
