@@ -124,15 +124,21 @@ OccupancyGrid OccupancyGridBuilder::Build() const {
     grid.log_odds[cell] = static_cast<float>(
         std::clamp(grid.log_odds[cell] + change, options_.log_odds_min, options_.log_odds_max));
   };
+  std::vector<std::size_t> crossed;  // the cells one scan's beams cross, each once
   for (std::size_t s = 0; s < origins_.size(); ++s) {
     const std::uint32_t mark = static_cast<std::uint32_t>(s + 1);
     const std::size_t end = s + 1 < scan_starts_.size() ? scan_starts_[s + 1] : endpoints_.size();
     const Eigen::Vector2d from = (origins_[s] - grid.origin_m) / r;
+    crossed.clear();
     for (std::size_t i = scan_starts_[s]; i < end; ++i) {
       const Eigen::Vector2d to = (endpoints_[i] - grid.origin_m) / r;
       hit[static_cast<std::size_t>(to.y()) * grid.width + static_cast<std::size_t>(to.x())] = mark;
       TraverseCells(from, to, [&](long x, long y) {
-        missed[static_cast<std::size_t>(y) * grid.width + static_cast<std::size_t>(x)] = mark;
+        const std::size_t cell =
+            static_cast<std::size_t>(y) * grid.width + static_cast<std::size_t>(x);
+        if (missed[cell] == mark) return;
+        missed[cell] = mark;
+        crossed.push_back(cell);
       });
     }
     for (std::size_t i = scan_starts_[s]; i < end; ++i) {
@@ -146,15 +152,8 @@ OccupancyGrid OccupancyGridBuilder::Build() const {
       }
     }
     // The crossed cells, minus those where a beam of this scan ended.
-    for (std::size_t i = scan_starts_[s]; i < end; ++i)
-      TraverseCells(from, (endpoints_[i] - grid.origin_m) / r, [&](long x, long y) {
-        const std::size_t cell =
-            static_cast<std::size_t>(y) * grid.width + static_cast<std::size_t>(x);
-        if (missed[cell] == mark) {
-          update(cell, options_.log_odds_miss);
-          missed[cell] = 0;
-        }
-      });
+    for (const std::size_t cell : crossed)
+      if (missed[cell] == mark) update(cell, options_.log_odds_miss);
   }
   return grid;
 }
