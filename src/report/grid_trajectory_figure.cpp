@@ -18,7 +18,7 @@ namespace style = figure_style;
 // Coordinates to 0.001 px: at 16× a thousandth of a pixel is still far below a screen pixel.
 constexpr int kDecimals = 3;
 constexpr std::uint8_t kOccupiedShade = 40, kFreeShade = 255, kUnknownShade = 222;
-constexpr double kRingRadiusPx = 5.0, kLabelSizePx = 10.0;
+constexpr double kRingRadiusPx = 5.0, kFlagRadiusPx = 2.0, kLabelSizePx = 10.0;
 // The line map in a colour that stays visible over occupied (dark) cells.
 constexpr const char* kLineMapOverGrid = "#c51b7d";
 
@@ -97,7 +97,10 @@ void DrawPath(SvgCanvas& svg, const MapFrame& frame, const TrajectoryFigureInput
     if (row.flagged()) flagged.push_back(pixels.back());
   }
   svg.Polyline(pixels, style::kTrajectory, 2.0);
-  svg.Dots(flagged, 4.0, style::kInvalid);
+  // Circles at their exact place (Dots would snap them to a 2 px lattice, 32 px at 16×).
+  svg.BeginGroup("", "flag");
+  for (const Eigen::Vector2d& p : flagged) svg.Circle(p, kFlagRadiusPx, style::kInvalid);
+  svg.EndGroup();
   DrawMarkers(svg, Markers(frame, input), labels);
 }
 

@@ -66,6 +66,7 @@ pre { background: #f7f7f7; padding: 8px; overflow-x: auto; font-size: 12px; }
 .zoom-view > svg * { vector-effect: non-scaling-stroke; }
 .zoom-view > svg text { font-size: calc(10px / var(--z)); }
 .zoom-view > svg g.marker circle { r: calc(5px / var(--z)); }
+.zoom-view > svg g.flag circle { r: calc(2px / var(--z)); }
 )css";
 
 std::string Escape(const std::string& text) {

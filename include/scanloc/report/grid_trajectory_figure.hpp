@@ -17,9 +17,10 @@ struct GridTrajectoryFigure {
   double width_px = 0.0, height_px = 0.0;
 };
 
-// The grid fills at most max_width_px × max_height_px at zoom 1. Strokes, markers (groups of
-// class "marker") and texts are meant to keep their size on screen when the page magnifies the
-// figure (html_report's CSS). `id` must be unique in the page.
+// The grid fills at most max_width_px × max_height_px at zoom 1. Strokes, markers (circles in
+// groups of class "marker", radius 5, and "flag", radius 2) and texts are meant to keep their size
+// on screen when the page magnifies the figure (html_report's CSS). `id` must be unique in the
+// page.
 GridTrajectoryFigure TrajectoryOverGridFigure(const TrajectoryFigureInput& input,
                                               const OccupancyGridImage& grid, const std::string& id,
                                               double max_width_px = 960,
