@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "common_options.hpp"
+#include "scanloc/common/output_folder.hpp"
 #include "scanloc/io/run_folder.hpp"
 #include "scanloc/io/sequence_sources.hpp"
 #include "scanloc/io/session_run.hpp"
@@ -100,6 +101,7 @@ void PrintOutcome(const SessionRun& run, const nlohmann::json& summary, const Ru
 }
 
 void Run(const Arguments& a) {
+  RefuseNonEmptyFolder(a.out_dir, a.force);  // before anything is read (RunFolder checks again)
   Config config = a.config.Build();
   if (!a.initial_pose.empty()) {
     config.session.initial_pose = {a.initial_pose[0], a.initial_pose[1], a.initial_pose[2]};
