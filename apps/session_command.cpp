@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "common_options.hpp"
+#include "scanloc/common/output_folder.hpp"
 #include "scanloc/io/run_folder.hpp"
 #include "scanloc/io/sequence_sources.hpp"
 #include "scanloc/io/session_run.hpp"
@@ -31,6 +32,7 @@ struct Arguments {
   std::size_t max_scans = 0;
   bool quiet = false;
   bool raw_odometry = false;
+  bool force = false;
   RosBagOptions bag;
 };
 
@@ -42,7 +44,8 @@ void Register(CLI::App& command, Arguments& a) {
   command.add_option("--line-map", a.line_map_path, "off-line line map")->check(CLI::ExistingFile);
   command.add_option("--point-map", a.point_map_path, "saved point map (PCD) to start from")
       ->check(CLI::ExistingFile);
-  command.add_option("--out", a.out_dir, "run folder to write")->required();
+  command.add_option("--out", a.out_dir, "run folder to write (new or empty)")->required();
+  command.add_flag("--force", a.force, "write into an --out folder that is not empty");
   command.add_option("--initial-pose", a.initial_pose, "first posture x y theta (default 0 0 0)")
       ->expected(3)
       ->check(PlausibleCoordinate());
@@ -71,7 +74,8 @@ nlohmann::json Inputs(const Arguments& a) {
           {"point_map", absolute(a.point_map_path)}};
 }
 
-void PrintOutcome(const SessionRun& run, const nlohmann::json& summary, const RunFolder& folder) {
+void PrintOutcome(const SessionRun& run, const nlohmann::json& summary, const RunFolder& folder,
+                  const OccupancyGrid* grid) {
   const SessionCounts& c = run.counts;
   std::cout << "session: " << c.iterations << " scans (" << c.localised << " localised, "
             << c.validated << " validated, " << c.flagged << " flagged), map "
@@ -105,8 +109,11 @@ void PrintOutcome(const SessionRun& run, const nlohmann::json& summary, const Ru
     std::cout << "odometry: " << reversed
               << " increments reversed (the log's pose moved forward while ODOM reported a "
                  "negative velocity; --raw-odometry keeps them)\n";
-  std::cout << "wrote " << folder.directory()
-            << "/{iterations.jsonl,trajectory.tum,map.pcd,summary.json}\n";
+  if (grid)
+    std::cout << "occupancy grid: " << grid->width << " × " << grid->height << " cells of "
+              << grid->resolution_m << " m from " << run.grid->scans() << " scans\n";
+  std::cout << "wrote " << folder.directory() << "/{iterations.jsonl,trajectory.tum,map.pcd,"
+            << (grid ? "map.pgm,map.yaml," : "") << "summary.json}\n";
 }
 
 // One line when the log's own saturation code lowers the range limit below log.max_range_m.
@@ -119,6 +126,7 @@ void ReportNoReturn(const IterationSource& source, const CarmenOptions& carmen) 
 }
 
 void Run(const Arguments& a) {
+  RefuseNonEmptyFolder(a.out_dir, a.force);  // before anything is read (RunFolder checks again)
   Config config = a.config.Build();
   if (!a.initial_pose.empty()) {
     config.session.initial_pose = {a.initial_pose[0], a.initial_pose[1], a.initial_pose[2]};
@@ -134,7 +142,7 @@ void Run(const Arguments& a) {
   LineMap lines = a.line_map_path.empty() ? LineMap{} : ReadLineMap(a.line_map_path);
   PointMap points = a.point_map_path.empty() ? PointMap(config.point_map)
                                              : LoadPointMapPcd(a.point_map_path, config.point_map);
-  RunFolder folder(a.out_dir);
+  RunFolder folder(a.out_dir, a.force);
   std::signal(SIGINT, OnInterrupt);
   std::signal(SIGTERM, OnInterrupt);
   const SessionFactory make_session = [&](const IterationSource& from) {
@@ -144,16 +152,23 @@ void Run(const Arguments& a) {
         SessionConfig{config.session, {config.scoring, config.validation, config.refiner}},
         config.mounting, std::move(lines), std::move(points));
   };
-  const SessionRun run =
-      RunSession(*source, make_session, folder, {a.max_scans, !a.quiet, &g_interrupted});
+  SessionRunOptions run_options;
+  run_options.max_scans = a.max_scans;
+  run_options.progress = !a.quiet;
+  run_options.stop = &g_interrupted;
+  if (config.write_occupancy_grid) run_options.occupancy_grid = config.occupancy_grid;
+  const SessionRun run = RunSession(*source, make_session, folder, run_options);
   nlohmann::json summary = SummaryJson(run, *source);
   summary["log"] = a.log_path;
   summary["config"] = ToJson(config);
   summary["odometry_reversal_repair"] = carmen.repair_reversed_odometry;
   summary["inputs"] = Inputs(a);
   const PointMap empty_map(config.point_map);
-  folder.Finish(run.session ? run.session->point_map() : empty_map, summary);
-  PrintOutcome(run, summary, folder);
+  std::optional<OccupancyGrid> grid;
+  if (run.grid && run.grid->scans() > 0) grid = run.grid->Build();
+  folder.Finish(run.session ? run.session->point_map() : empty_map, summary,
+                grid ? &*grid : nullptr);
+  PrintOutcome(run, summary, folder, grid ? &*grid : nullptr);
   if (!run.counts.failure.empty())
     throw std::runtime_error("the session stopped at scan " +
                              std::to_string(run.counts.iterations) + ": " + run.counts.failure +

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "scanloc/common/output_folder.hpp"
 #include "scanloc/io/environment_files.hpp"
 
 namespace scanloc::app {
@@ -13,6 +14,7 @@ void RegisterSimulateCommand(CLI::App& app) {
     std::string environment, out_dir;
     unsigned seed = 1;
     std::size_t iterations = 0;
+    bool force = false;
   };
   auto a = std::make_shared<Arguments>();
   CLI::App* command = app.add_subcommand(
@@ -24,10 +26,13 @@ void RegisterSimulateCommand(CLI::App& app) {
       ->check(CLI::IsMember(EnvironmentNames()));
   command->add_option("--seed", a->seed, "random seed (odometry, range noise, missing returns)")
       ->capture_default_str();
-  command->add_option("--out", a->out_dir, "directory to write the files into")->required();
+  command->add_option("--out", a->out_dir, "directory to write the files into (new or empty)")
+      ->required();
+  command->add_flag("--force", a->force, "write into an --out folder that is not empty");
   command->add_option("--iterations", a->iterations,
                       "stop the path after this many iterations (0: the whole path)");
   command->final_callback([a] {
+    RefuseNonEmptyFolder(a->out_dir, a->force);
     const EnvironmentFiles files =
         WriteEnvironmentFiles(MakeEnvironment(a->environment), a->seed, a->out_dir, a->iterations);
     std::cout << "simulated " << a->environment << " (seed " << a->seed << "): " << files.iterations

@@ -10,7 +10,7 @@ source scripts/public-logs.sh benchmark-sessions
 mkdir -p "$out"
 for log in intel aces fr079; do
   echo "benchmark-sessions: $log" >&2
-  "$scanloc" session --log "$datasets/$log.clf.gz" --out "$out/$log" --quiet > "$out/$log.session.txt"
+  "$scanloc" session --log "$datasets/$log.clf.gz" --out "$out/$log" --force --quiet > "$out/$log.session.txt"
   "$scanloc" evaluate --trajectory "$out/$log/trajectory.tum" --relations "$datasets/$log.relations" \
     --json > "$out/$log.evaluation.json"
 done

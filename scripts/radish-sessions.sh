@@ -19,7 +19,7 @@ for log in seattle orebro fhw edmonton acapulco; do
     args=()
     [ "$kind" = odometry ] && args=("${odometry_only[@]}")
     /usr/bin/time -f "%U %S" -o "$out/$log-$kind.cpu" \
-      "$scanloc" session --log "$input" --out "$out/$log-$kind" --quiet "${args[@]}" \
+      "$scanloc" session --log "$input" --out "$out/$log-$kind" --force --quiet "${args[@]}" \
       > "$out/$log-$kind.session.txt" || true
     for relations in relations local.relations; do
       "$scanloc" evaluate --trajectory "$out/$log-$kind/trajectory.tum" \

@@ -25,7 +25,7 @@ for log in intel aces fr079; do
     echo "robustness-sessions: $log ${p:-default}" >&2
     args=()
     [ -n "$p" ] && args=(--set "$p")
-    "$scanloc" session --log "$datasets/$log.clf.gz" --out "$out/$log-$i" --quiet "${args[@]}" \
+    "$scanloc" session --log "$datasets/$log.clf.gz" --out "$out/$log-$i" --force --quiet "${args[@]}" \
       > "$out/$log-$i.session.txt"
     "$scanloc" evaluate --trajectory "$out/$log-$i/trajectory.tum" \
       --relations "$datasets/$log.relations" --json > "$out/$log-$i.evaluation.json"

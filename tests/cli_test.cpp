@@ -474,6 +474,80 @@ TEST_F(SessionFailureTest, AMalformedLineMidRunFailsButKeepsWhatWasDone) {
   EXPECT_NE(summary["failed"].get<std::string>().find("broken.seq.jsonl:7"), std::string::npos);
   EXPECT_EQ(ReadTumTrajectory(out + "/trajectory.tum").size(), 5u);
   EXPECT_GT(LoadPointMapPcd(out + "/map.pcd").live_size(), 0u);
+  // The occupancy grid of those five scans is written too.
+  EXPECT_EQ(summary["files"]["occupancy_grid"], "map.yaml");
+  EXPECT_TRUE(testing::Contains(testing::ReadWholeFile(out + "/map.yaml"), "image: map.pgm"));
+  EXPECT_GT(std::filesystem::file_size(out + "/map.pgm"), 100u * 100u);  // a 7 m room at 5 cm
+}
+
+// The classroom's first `scans` scans from the operator's posture into `out`, with `extra` words.
+testing::ScanlocRun ClassroomSession(const std::string& dir, const std::string& out, int scans,
+                                     const std::vector<std::string>& extra = {}) {
+  std::vector<std::string> words = {"session",
+                                    "--log",
+                                    kClassroom + "/classroom.seq.jsonl",
+                                    "--line-map",
+                                    kMap,
+                                    "--initial-pose",
+                                    "1.126",
+                                    "3.112",
+                                    "0.0463",
+                                    "--max-scans",
+                                    std::to_string(scans),
+                                    "--out",
+                                    out,
+                                    "--quiet"};
+  words.insert(words.end(), extra.begin(), extra.end());
+  return testing::RunScanloc(words, dir);
+}
+
+TEST_F(SessionFailureTest, ANonEmptyOutFolderIsRefusedUntouchedUnlessForced) {
+  const std::string out = dir_ + "/run";
+  ASSERT_EQ(ClassroomSession(dir_, out, 3).exit_code, 0);
+  const std::string trajectory = testing::ReadWholeFile(out + "/trajectory.tum");
+  const auto written = std::filesystem::last_write_time(out + "/iterations.jsonl");
+  const testing::ScanlocRun again = ClassroomSession(dir_, out, 5);
+  ASSERT_TRUE(again.exited) << again;
+  EXPECT_NE(again.exit_code, 0) << again;
+  EXPECT_TRUE(testing::Contains(again.err, out + " already exists and is not empty")) << again;
+  EXPECT_TRUE(testing::Contains(again.err, "--force")) << again;
+  EXPECT_EQ(testing::ReadWholeFile(out + "/trajectory.tum"), trajectory);  // nothing touched
+  EXPECT_EQ(std::filesystem::last_write_time(out + "/iterations.jsonl"), written);
+  const testing::ScanlocRun forced = ClassroomSession(dir_, out, 5, {"--force"});
+  EXPECT_EQ(forced.exit_code, 0) << forced;
+  EXPECT_EQ(ReadTumTrajectory(out + "/trajectory.tum").size(), 5u);
+}
+
+TEST_F(SessionFailureTest, SimulateRefusesANonEmptyOutFolderUnlessForced) {
+  Write("kept.txt", "earlier");
+  const auto r = testing::RunScanloc(
+      {"simulate", "--environment", "classroom", "--iterations", "2", "--out", dir_}, dir_);
+  EXPECT_NE(r.exit_code, 0) << r;
+  EXPECT_TRUE(testing::Contains(r.err, "already exists and is not empty")) << r;
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/classroom.lines"));
+  const auto forced = testing::RunScanloc(
+      {"simulate", "--environment", "classroom", "--iterations", "2", "--out", dir_, "--force"},
+      dir_);
+  EXPECT_EQ(forced.exit_code, 0) << forced;
+  EXPECT_TRUE(std::filesystem::exists(dir_ + "/kept.txt"));
+}
+
+TEST_F(SessionFailureTest, TheGridOptionsSetItsResolutionOrTurnItOff) {
+  const auto coarse =
+      ClassroomSession(dir_, dir_ + "/coarse", 3, {"--set", "occupancy_grid.resolution_m=0.1"});
+  ASSERT_EQ(coarse.exit_code, 0) << coarse;
+  EXPECT_TRUE(
+      testing::Contains(testing::ReadWholeFile(dir_ + "/coarse/map.yaml"), "\nresolution: 0.1\n"));
+  const auto off =
+      ClassroomSession(dir_, dir_ + "/off", 3, {"--set", "occupancy_grid.write=false"});
+  ASSERT_EQ(off.exit_code, 0) << off;
+  EXPECT_TRUE(std::filesystem::exists(dir_ + "/off/map.pcd"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/off/map.pgm"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/off/map.yaml"));
+  const auto absurd =
+      ClassroomSession(dir_, dir_ + "/absurd", 3, {"--set", "occupancy_grid.resolution_m=0"});
+  EXPECT_NE(absurd.exit_code, 0) << absurd;
+  EXPECT_TRUE(testing::Contains(absurd.err, "occupancy_grid.resolution_m")) << absurd;
 }
 
 }  // namespace

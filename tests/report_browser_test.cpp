@@ -186,9 +186,10 @@ TEST_F(ReportInBrowser, PageLoadsWithoutConsoleMessagesAndItsScreenshotShowsTheF
             Count(html, "<section class=\"iteration"));
   EXPECT_EQ(Count(dom.out, "<table"), Count(html, "<table"));
 
-  // A screenshot tall enough for the summary, the trajectory, the moments and the first
-  // iteration; the console stays silent (no error, no failed load: the page is self-contained).
-  const int width = 1280, height = 3200;
+  // A screenshot tall enough for the summary, the trajectory (over the grid and over the points),
+  // the moments and the first iteration; the console stays silent (no error, no failed load: the
+  // page is self-contained).
+  const int width = 1280, height = 4000;
   const std::string screenshot = dir_ + "/report.png";
   const CommandResult shot =
       Chromium({"--hide-scrollbars", "--screenshot=" + screenshot,

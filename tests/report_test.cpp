@@ -14,6 +14,7 @@
 #include "scanloc/common/parse_error.hpp"
 #include "scanloc/io/run_folder.hpp"
 #include "scanloc/maps/point_map_io.hpp"
+#include "scanloc/report/grid_trajectory_figure.hpp"
 #include "scanloc/report/histogram_figure.hpp"
 #include "scanloc/report/html_report.hpp"
 #include "scanloc/report/html_tables.hpp"
@@ -22,6 +23,7 @@
 #include "scanloc/report/map_figure.hpp"
 #include "scanloc/report/markup.hpp"
 #include "scanloc/report/plot_frame.hpp"
+#include "scanloc/report/png_image.hpp"
 #include "scanloc/report/run_records.hpp"
 #include "scanloc/report/scan_replay.hpp"
 #include "scanloc/report/svg_canvas.hpp"
@@ -106,6 +108,13 @@ TEST(SvgNumber, RoundsToATenthWithoutTrailingZero) {
   EXPECT_EQ(SvgNumber(INFINITY), "0");
 }
 
+TEST(SvgNumber, KeepsTheDecimalsAskedForWithoutTrailingZeros) {
+  EXPECT_EQ(SvgNumber(12.34567, 3), "12.346");
+  EXPECT_EQ(SvgNumber(12.5, 3), "12.5");
+  EXPECT_EQ(SvgNumber(-0.0004, 3), "0");
+  EXPECT_EQ(SvgNumber(7.0, 0), "7");
+}
+
 // ---- plot frames and labels --------------------------------------------------------------------
 
 TEST(MapFrame, FitsTheBoxAtOneScaleCentredWithYUp) {
@@ -170,6 +179,17 @@ TEST(LabelPlacer, LabelsAroundOneAnchorNeverOverlapAndAreDroppedWhenNoRoomIsLeft
   }
   EXPECT_GE(placed.size(), 5u);
   EXPECT_GT(dropped, 0);
+}
+
+TEST(LabelPlacer, WithOneRingALabelStaysBesideItsAnchorOrIsLeftOut) {
+  LabelPlacer placer(0, 0, 200, 120, 1);
+  int placed = 0;
+  for (int i = 0; i < 20; ++i)
+    if (const auto at = placer.Place({100, 60}, std::to_string(i), 10.0)) {
+      ++placed;
+      EXPECT_LT((*at - Eigen::Vector2d(100, 60)).norm(), 4.0 + 10.0 + 3 * 5.8) << i;
+    }
+  EXPECT_EQ(placed, 4);  // right, left, above, below; the diagonals overlap those
 }
 
 // ---- iterations.jsonl ---------------------------------------------------------------------------
@@ -512,8 +532,29 @@ TEST_F(ReportTest, MissingSummaryAndMapAreSaidAndTheRestRenders) {
   EXPECT_TRUE(Contains(html, "summary.json is missing"));
   EXPECT_TRUE(Contains(html, "map.pcd is missing"));
   EXPECT_TRUE(Contains(html, "the run does not name its sequence"));
+  EXPECT_TRUE(Contains(html, "no occupancy grid (map.yaml): `scanloc export-grid "));
+  EXPECT_FALSE(Contains(html, "trajectory-zoom"));  // no grid figure without a grid
   EXPECT_EQ(result.drawn, 2u);
-  EXPECT_EQ(result.notes.size(), 3u);
+  EXPECT_EQ(result.notes.size(), 4u);
+}
+
+TEST_F(ReportTest, TheTrajectoryIsDrawnOverTheSessionsGridAPixelPerCellZoomableWithoutScript) {
+  const std::string run = testing::MakeClassroomRun(dir_);
+  ASSERT_FALSE(run.empty());
+  const RunContents contents = ReadRunContents(run);
+  ASSERT_TRUE(contents.grid.has_value());
+  const OccupancyGridImage& grid = *contents.grid;
+  EXPECT_DOUBLE_EQ(grid.resolution_m, 0.05);
+  EXPECT_GT(grid.width, 120u);  // the 6.3 m × 7 m classroom
+  EXPECT_GT(grid.height, 130u);
+  const std::string html = ReadText(WriteRunReport(run).path);
+  EXPECT_TRUE(Contains(html, GreyscalePngDataUri(grid.width, grid.height, GridShades(grid))));
+  EXPECT_TRUE(Contains(
+      html, std::to_string(grid.width) + " × " + std::to_string(grid.height) + " cells of 5.0 cm"));
+  for (const char* zoom : {"z1", "z2", "z4", "z8", "z16"})
+    EXPECT_TRUE(Contains(html, std::string("class=\"") + zoom + "\"")) << zoom;
+  EXPECT_FALSE(Contains(html, "<script"));
+  EXPECT_TRUE(Contains(html, "<figure class=\"zoomable\">"));
 }
 
 TEST_F(ReportTest, AMalformedIterationsFileFailsWithFileAndLineAndWritesNoPage) {

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -53,7 +54,7 @@ class SessionRunTest : public testing::TemporaryDirTest {};
 TEST_F(SessionRunTest, CountsEveryIterationAndTheDataSpan) {
   WalkSource source(12, -1);
   RunFolder folder(dir_ + "/run");
-  const SessionRun run = RunSession(source, Factory(), folder, {0, false, nullptr});
+  const SessionRun run = RunSession(source, Factory(), folder, {0, false, nullptr, {}});
   ASSERT_NE(run.session, nullptr);
   EXPECT_EQ(run.counts.iterations, 12u);
   EXPECT_EQ(run.counts.localised + run.counts.skipped, 12u);
@@ -69,7 +70,7 @@ TEST_F(SessionRunTest, CountsEveryIterationAndTheDataSpan) {
 TEST_F(SessionRunTest, AnErrorMidRunEndsTheLoopAndKeepsWhatWasDone) {
   WalkSource source(12, 5);
   RunFolder folder(dir_ + "/run");
-  const SessionRun run = RunSession(source, Factory(), folder, {0, false, nullptr});
+  const SessionRun run = RunSession(source, Factory(), folder, {0, false, nullptr, {}});
   EXPECT_EQ(run.counts.iterations, 5u);
   EXPECT_NE(run.counts.failure.find("walk.log:6:"), std::string::npos) << run.counts.failure;
   const nlohmann::json summary = SummaryJson(run, source);
@@ -84,15 +85,48 @@ TEST_F(SessionRunTest, AnErrorMidRunEndsTheLoopAndKeepsWhatWasDone) {
 TEST_F(SessionRunTest, MaxScansAndTheStopFlagEndTheLoopEarly) {
   WalkSource source(12, -1);
   RunFolder folder(dir_ + "/run");
-  EXPECT_EQ(RunSession(source, Factory(), folder, {3, false, nullptr}).counts.iterations, 3u);
+  EXPECT_EQ(RunSession(source, Factory(), folder, {3, false, nullptr, {}}).counts.iterations, 3u);
   const std::atomic<bool> stop{true};
   WalkSource again(12, -1);
   RunFolder other(dir_ + "/other");
-  const SessionRun stopped = RunSession(again, Factory(), other, {0, false, &stop});
+  const SessionRun stopped = RunSession(again, Factory(), other, {0, false, &stop, {}});
   EXPECT_EQ(stopped.counts.iterations, 0u);
   EXPECT_TRUE(stopped.counts.interrupted);
   EXPECT_EQ(stopped.session, nullptr);
   EXPECT_EQ(SummaryJson(stopped, again)["problem"], "the sequence has no scan");
+}
+
+TEST_F(SessionRunTest, ValidatedScansAreCastIntoTheOccupancyGridAtTheKeptPostures) {
+  WalkSource source(12, -1);
+  RunFolder folder(dir_ + "/run");
+  SessionRunOptions options;
+  options.progress = false;
+  options.occupancy_grid = OccupancyGridOptions{};
+  const SessionRun run = RunSession(source, Factory(), folder, options);
+  ASSERT_TRUE(run.grid.has_value());
+  EXPECT_EQ(run.grid->scans(), run.counts.validated);  // the walk's first scan is validated too
+  EXPECT_GE(run.grid->scans(), 11u);
+  const OccupancyGrid grid = run.grid->Build();
+  EXPECT_DOUBLE_EQ(grid.resolution_m, 0.05);
+  std::size_t x = 0, y = 0;
+  // The south wall (y = 0) below the walk is occupied, the walk's corridor (crossed by the beams
+  // of every scan) free.
+  ASSERT_TRUE(grid.CellOf({3.01, 0.01}, x, y));
+  EXPECT_EQ(grid.State(x, y), CellState::kOccupied);
+  ASSERT_TRUE(grid.CellOf({3.01, 3.01}, x, y));
+  EXPECT_EQ(grid.State(x, y), CellState::kFree);
+  // Without the option, no grid is kept.
+  WalkSource again(3, -1);
+  RunFolder other(dir_ + "/other");
+  EXPECT_FALSE(RunSession(again, Factory(), other, {0, false, nullptr, {}}).grid.has_value());
+}
+
+TEST_F(SessionRunTest, ANonEmptyRunFolderIsRefusedUnlessOverwriteIsAsked) {
+  Write("kept.txt", "earlier results");
+  EXPECT_THROW(RunFolder folder(dir_), std::runtime_error);
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/iterations.jsonl"));  // nothing touched
+  RunFolder folder(dir_, /*overwrite=*/true);
+  EXPECT_TRUE(std::filesystem::exists(dir_ + "/iterations.jsonl"));
 }
 
 TEST(ChooseMounting, TheConfiguredMountingWinsUnlessTheCommandLineOverridesTheSource) {

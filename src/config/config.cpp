@@ -297,6 +297,7 @@ void Config::Validate() const {
   refiner.icp.Validate();
   session.Validate();
   log.Validate();
+  occupancy_grid.Validate();
 }
 
 void ApplyJson(const json& root, Config& config) {

@@ -173,6 +173,15 @@ void VisitLog(C& c, V& v) {
     "reverse odometry increments that move forward while ODOM reports a negative velocity");
 }
 
+template <class C, class V>
+void VisitOccupancyGrid(C& c, V& v) {
+  v("occupancy_grid.write", c.write_occupancy_grid,
+    "a session writes map.pgm + map.yaml (map_server) from its validated scans into the run "
+    "folder");
+  v("occupancy_grid.resolution_m", c.occupancy_grid.resolution_m, Bounds{1e-3, 100},
+    "the grid's cell side, m");
+}
+
 // Every option, in the order of the help text.
 template <class C, class V>
 void VisitOptions(C& c, V& v) {
@@ -181,6 +190,7 @@ void VisitOptions(C& c, V& v) {
   VisitRefinement(c, v);
   VisitSession(c, v);
   VisitLog(c, v);
+  VisitOccupancyGrid(c, v);
 }
 
 // Keys that no longer exist, with where their meaning went.

@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
+#include <map>
 #include <ostream>
+#include <stdexcept>
 
 #include "scanloc/common/atomic_file.hpp"
 #include "scanloc/io/sequence_sources.hpp"
@@ -28,11 +32,82 @@ unsigned char Pixel(CellState state) {
   return kPgmUnknown;
 }
 
+// The next header token of a PGM, skipping `#` comments.
+std::string PgmToken(std::istream& in) {
+  std::string token;
+  while (in >> token && token.front() == '#') std::getline(in, token);
+  return token;
+}
+
+std::map<std::string, std::string> YamlKeys(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open " + path);
+  std::map<std::string, std::string> keys;
+  for (std::string line; std::getline(in, line);) {
+    const auto colon = line.find(':');
+    const auto value = line.find_first_not_of(' ', colon + 1);
+    if (colon != std::string::npos && value != std::string::npos)
+      keys[line.substr(0, colon)] = line.substr(value);
+  }
+  for (const char* key : {"image", "resolution", "origin"})
+    if (!keys.count(key)) throw std::runtime_error(path + ": expected the key " + key);
+  return keys;
+}
+
+void ReadPgmPixels(const std::string& path, OccupancyGridImage& image) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot open " + path);
+  const std::string magic = PgmToken(in), width = PgmToken(in), height = PgmToken(in),
+                    depth = PgmToken(in);
+  try {
+    image.width = std::stoul(width);
+    image.height = std::stoul(height);
+  } catch (const std::exception&) {
+    image.width = image.height = 0;
+  }
+  constexpr std::size_t kMaxCells = std::size_t{1} << 28;  // 16384² cells
+  if (magic != "P5" || depth != "255" || image.width == 0 || image.height == 0 ||
+      image.width > kMaxCells / image.height)
+    throw std::runtime_error(path +
+                             ": expected a binary PGM (P5, 255 levels) of at most 2^28 pixels");
+  in.get();  // the single whitespace before the pixels
+  image.pixels.resize(image.width * image.height);
+  in.read(reinterpret_cast<char*>(image.pixels.data()),
+          static_cast<std::streamsize>(image.pixels.size()));
+  if (static_cast<std::size_t>(in.gcount()) != image.pixels.size())
+    throw std::runtime_error(path + ": expected " + std::to_string(image.pixels.size()) +
+                             " pixels, the file ends before");
+}
+
 }  // namespace
+
+OccupancyGridImage ReadOccupancyGridImage(const std::string& yaml_path) {
+  const auto keys = YamlKeys(yaml_path);
+  OccupancyGridImage image;
+  double x = 0.0, y = 0.0;
+  try {
+    image.resolution_m = std::stod(keys.at("resolution"));
+  } catch (const std::exception&) {
+    image.resolution_m = 0.0;
+  }
+  if (!(image.resolution_m > 0.0) || !std::isfinite(image.resolution_m) ||
+      std::sscanf(keys.at("origin").c_str(), "[%lf, %lf", &x, &y) != 2 || !std::isfinite(x) ||
+      !std::isfinite(y))
+    throw std::runtime_error(yaml_path +
+                             ": expected a positive resolution and origin: [x, y, yaw]");
+  image.origin_m = {x, y};
+  const std::filesystem::path dir = std::filesystem::path(yaml_path).parent_path();
+  ReadPgmPixels((dir / keys.at("image")).string(), image);
+  return image;
+}
+
+OccupancyGridFiles OccupancyGridPaths(const std::string& dir, const std::string& name) {
+  return {dir + "/" + name + ".pgm", dir + "/" + name + ".yaml"};
+}
 
 OccupancyGridFiles WriteOccupancyGrid(const std::string& dir, const OccupancyGrid& grid,
                                       const std::string& name) {
-  OccupancyGridFiles files{dir + "/" + name + ".pgm", dir + "/" + name + ".yaml"};
+  const OccupancyGridFiles files = OccupancyGridPaths(dir, name);
   WriteFileAtomically(files.image_path, [&](std::ostream& out) {
     out << "P5\n# scanloc occupancy grid, " << grid.resolution_m << " m/pixel\n"
         << grid.width << ' ' << grid.height << "\n255\n";

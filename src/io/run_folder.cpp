@@ -5,7 +5,9 @@
 #include <nlohmann/json.hpp>
 
 #include "scanloc/common/atomic_file.hpp"
+#include "scanloc/common/output_folder.hpp"
 #include "scanloc/io/candidate_report.hpp"
+#include "scanloc/io/occupancy_grid_io.hpp"
 #include "scanloc/io/record_keys.hpp"
 #include "scanloc/maps/point_map_io.hpp"
 
@@ -68,7 +70,8 @@ nlohmann::json ToJson(const IterationRecord& r) {
   return out;
 }
 
-RunFolder::RunFolder(const std::string& directory) : directory_(directory) {
+RunFolder::RunFolder(const std::string& directory, bool overwrite) : directory_(directory) {
+  RefuseNonEmptyFolder(directory_, overwrite);
   std::error_code error;
   std::filesystem::create_directories(directory_, error);
   if (error || !std::filesystem::is_directory(directory_))
@@ -84,13 +87,17 @@ void RunFolder::Record(const IterationRecord& record) {
   trajectory_.push_back({record.timestamp_s, record.T_world_robot});
 }
 
-void RunFolder::Finish(const PointMap& map, nlohmann::json summary) {
+void RunFolder::Finish(const PointMap& map, nlohmann::json summary, const OccupancyGrid* grid) {
   records_.close();
   WriteTumTrajectory(Path("trajectory.tum"), trajectory_);
   SavePointMapPcd(map, Path("map.pcd"));
   summary["files"] = {{keys::kIterations, "iterations.jsonl"},
                       {"trajectory", "trajectory.tum"},
                       {"map", "map.pcd"}};
+  if (grid) {
+    WriteOccupancyGrid(directory_, *grid);
+    summary["files"]["occupancy_grid"] = "map.yaml";
+  }
   WriteFileAtomically(Path("summary.json"),
                       [&](std::ostream& out) { out << summary.dump(2) << '\n'; });
 }

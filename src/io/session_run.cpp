@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "scanloc/io/run_grid.hpp"
+
 namespace scanloc {
 namespace {
 
@@ -61,11 +63,15 @@ SessionRun RunSession(IterationSource& source, const SessionFactory& make_sessio
     return options.max_scans == 0 || result.counts.iterations < options.max_scans;
   };
   auto stopped = [&] { return options.stop != nullptr && options.stop->load(); };
+  if (options.occupancy_grid) result.grid.emplace(*options.occupancy_grid);
   try {
     while (!stopped() && wanted() && source.Next(iteration)) {
       if (!result.session) result.session = make_session(source);
       const IterationRecord record = result.session->Process(iteration);
       run.Record(record);
+      if (result.grid && CastIntoGrid(record.validated, record.first))
+        result.grid->AddScan(iteration.scan,
+                             result.session->mounting().LaserPose(record.T_world_robot));
       result.counts.Add(record);
       if (options.progress && Clock::now() - last_progress > std::chrono::seconds(2)) {
         last_progress = Clock::now();

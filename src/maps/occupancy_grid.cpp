@@ -90,10 +90,16 @@ OccupancyGridBuilder::OccupancyGridBuilder(OccupancyGridOptions options) : optio
 
 void OccupancyGridBuilder::AddScan(const LaserScan& scan, const Pose2D& T_world_laser) {
   scan.CheckConsistent();
-  origins_.push_back(T_world_laser.Translation());
-  scan_starts_.push_back(endpoints_.size());
-  for (std::size_t i = 0; i < scan.size(); ++i)
-    if (scan.IsValid(i)) endpoints_.push_back(T_world_laser.Transform(scan.Point(i)));
+  KeptScan kept{{}, T_world_laser};
+  kept.scan.layout = scan.layout;
+  kept.scan.ranges_m = scan.ranges_m;
+  scans_.push_back(std::move(kept));
+}
+
+void OccupancyGridBuilder::EndPoints(const KeptScan& kept, std::vector<Eigen::Vector2d>& points) {
+  points.clear();
+  for (std::size_t i = 0; i < kept.scan.size(); ++i)
+    if (kept.scan.IsValid(i)) points.push_back(kept.T_world_laser.Transform(kept.scan.Point(i)));
 }
 
 OccupancyGrid OccupancyGridBuilder::Build() const {
@@ -101,13 +107,17 @@ OccupancyGrid OccupancyGridBuilder::Build() const {
   grid.resolution_m = options_.resolution_m;
   grid.occupied_probability = options_.occupied_probability;
   grid.free_probability = options_.free_probability;
-  if (origins_.empty()) return grid;
-  Eigen::Vector2d low = origins_.front(), high = origins_.front();
-  for (const auto* points : {&origins_, &endpoints_})
-    for (const Eigen::Vector2d& p : *points) {
+  if (scans_.empty()) return grid;
+  Eigen::Vector2d low = scans_.front().T_world_laser.Translation(), high = low;
+  std::vector<Eigen::Vector2d> endpoints;
+  for (const KeptScan& kept : scans_) {
+    EndPoints(kept, endpoints);
+    endpoints.push_back(kept.T_world_laser.Translation());
+    for (const Eigen::Vector2d& p : endpoints) {
       low = low.cwiseMin(p);
       high = high.cwiseMax(p);
     }
+  }
   const double r = options_.resolution_m;
   const double margin = static_cast<double>(options_.margin_cells);
   // Cell corners on multiples of the resolution, so that grids of one place line up.
@@ -124,19 +134,25 @@ OccupancyGrid OccupancyGridBuilder::Build() const {
     grid.log_odds[cell] = static_cast<float>(
         std::clamp(grid.log_odds[cell] + change, options_.log_odds_min, options_.log_odds_max));
   };
-  for (std::size_t s = 0; s < origins_.size(); ++s) {
+  std::vector<std::size_t> crossed;  // the cells one scan's beams cross, each once
+  for (std::size_t s = 0; s < scans_.size(); ++s) {
     const std::uint32_t mark = static_cast<std::uint32_t>(s + 1);
-    const std::size_t end = s + 1 < scan_starts_.size() ? scan_starts_[s + 1] : endpoints_.size();
-    const Eigen::Vector2d from = (origins_[s] - grid.origin_m) / r;
-    for (std::size_t i = scan_starts_[s]; i < end; ++i) {
-      const Eigen::Vector2d to = (endpoints_[i] - grid.origin_m) / r;
+    const Eigen::Vector2d from = (scans_[s].T_world_laser.Translation() - grid.origin_m) / r;
+    EndPoints(scans_[s], endpoints);
+    crossed.clear();
+    for (const Eigen::Vector2d& endpoint : endpoints) {
+      const Eigen::Vector2d to = (endpoint - grid.origin_m) / r;
       hit[static_cast<std::size_t>(to.y()) * grid.width + static_cast<std::size_t>(to.x())] = mark;
       TraverseCells(from, to, [&](long x, long y) {
-        missed[static_cast<std::size_t>(y) * grid.width + static_cast<std::size_t>(x)] = mark;
+        const std::size_t cell =
+            static_cast<std::size_t>(y) * grid.width + static_cast<std::size_t>(x);
+        if (missed[cell] == mark) return;
+        missed[cell] = mark;
+        crossed.push_back(cell);
       });
     }
-    for (std::size_t i = scan_starts_[s]; i < end; ++i) {
-      const Eigen::Vector2d to = (endpoints_[i] - grid.origin_m) / r;
+    for (const Eigen::Vector2d& endpoint : endpoints) {
+      const Eigen::Vector2d to = (endpoint - grid.origin_m) / r;
       const std::size_t cell =
           static_cast<std::size_t>(to.y()) * grid.width + static_cast<std::size_t>(to.x());
       if (hit[cell] == mark) {
@@ -146,15 +162,8 @@ OccupancyGrid OccupancyGridBuilder::Build() const {
       }
     }
     // The crossed cells, minus those where a beam of this scan ended.
-    for (std::size_t i = scan_starts_[s]; i < end; ++i)
-      TraverseCells(from, (endpoints_[i] - grid.origin_m) / r, [&](long x, long y) {
-        const std::size_t cell =
-            static_cast<std::size_t>(y) * grid.width + static_cast<std::size_t>(x);
-        if (missed[cell] == mark) {
-          update(cell, options_.log_odds_miss);
-          missed[cell] = 0;
-        }
-      });
+    for (const std::size_t cell : crossed)
+      if (missed[cell] == mark) update(cell, options_.log_odds_miss);
   }
   return grid;
 }

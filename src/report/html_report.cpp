@@ -7,12 +7,14 @@
 
 #include "scanloc/common/atomic_file.hpp"
 #include "scanloc/maps/point_map_io.hpp"
+#include "scanloc/report/grid_trajectory_figure.hpp"
 #include "scanloc/report/histogram_figure.hpp"
 #include "scanloc/report/html_tables.hpp"
 #include "scanloc/report/map_figure.hpp"
 #include "scanloc/report/markup.hpp"
 #include "scanloc/report/scan_replay.hpp"
 #include "scanloc/report/series_figure.hpp"
+#include "scanloc/report/svg_canvas.hpp"
 #include "scanloc/report/trajectory_figure.hpp"
 
 namespace scanloc {
@@ -53,6 +55,18 @@ table.iterations tr.flagged td { background: #fdf0ef; }
 table.iterations tr.skipped td { color: #888; }
 details > summary { cursor: pointer; margin: 6px 0; }
 pre { background: #f7f7f7; padding: 8px; overflow-x: auto; font-size: 12px; }
+.zoomable { margin: 0 0 12px; }
+.zoomable > label { font-size: 12px; margin-right: 10px; }
+.zoom-view { --z: 1; overflow: auto; resize: both; border: 1px solid #ccc; max-width: 100%; }
+.zoomable input.z2:checked ~ .zoom-view { --z: 2; }
+.zoomable input.z4:checked ~ .zoom-view { --z: 4; }
+.zoomable input.z8:checked ~ .zoom-view { --z: 8; }
+.zoomable input.z16:checked ~ .zoom-view { --z: 16; }
+.zoom-view > svg { width: calc(var(--w) * var(--z)); height: calc(var(--h) * var(--z)); }
+.zoom-view > svg * { vector-effect: non-scaling-stroke; }
+.zoom-view > svg text { font-size: calc(10px / var(--z)); }
+.zoom-view > svg g.marker circle { r: calc(5px / var(--z)); }
+.zoom-view > svg g.flag circle { r: calc(2px / var(--z)); }
 )css";
 
 std::string Escape(const std::string& text) {
@@ -214,17 +228,47 @@ void WritePageHead(std::ostream& page, const RunContents& run, const ReportResul
   }
 }
 
-// The trajectory over the final map, and close up when that shows more.
+// The trajectory over the occupancy grid, a pixel per cell, zoomed by radio buttons and CSS alone
+// (the page has no script): strokes, markers and labels keep their size on screen.
+void WriteGridTrajectoryFigure(std::ostream& page, const RunContents& run,
+                               const TrajectoryFigureInput& trajectory) {
+  const OccupancyGridImage& grid = *run.grid;
+  const GridTrajectoryFigure figure = TrajectoryOverGridFigure(trajectory, grid, "trajectory-grid");
+  page << "<figure class=\"zoomable\">";
+  for (const int zoom : {1, 2, 4, 8, 16}) {
+    const std::string id = "trajectory-zoom-" + std::to_string(zoom);
+    page << "<input type=\"radio\" name=\"trajectory-zoom\" class=\"z" << zoom << "\" id=\"" << id
+         << "\"" << (zoom == 1 ? " checked" : "") << "><label for=\"" << id << "\">" << zoom
+         << "×</label>";
+  }
+  page << "<div class=\"zoom-view\" style=\"--w: " << SvgNumber(figure.width_px)
+       << "px; --h: " << SvgNumber(figure.height_px)
+       << "px; width: " << SvgNumber(figure.width_px + 2)
+       << "px; height: " << SvgNumber(figure.height_px + 2) << "px\">" << figure.svg << "</div>"
+       << figure.legend
+       << "<figcaption>The posture kept for every iteration (blue), the flagged ones (red), and "
+          "the iterations drawn below (numbered rings, linked to their sections; a number that "
+          "would cover an earlier one is left out, its ring keeps the tooltip), over the "
+          "session's occupancy grid (map.pgm: "
+       << grid.width << " × " << grid.height << " cells of "
+       << FormatFixed(100 * grid.resolution_m, 1)
+       << " cm, a pixel per cell). Zoom with the buttons, scroll or drag the corner to resize "
+          "the view.</figcaption></figure>\n";
+}
+
+// The trajectory over the final map (its occupancy grid when the run has one), and close up on
+// map.pcd's points when that shows more.
 void WriteTrajectorySection(std::ostream& page, const RunContents& run,
                             const IterationSelection& selection) {
-  page << "<h2 id=\"trajectory\">Trajectory over the final map</h2>\n<div "
-          "class=\"figures\">\n<figure>";
   TrajectoryFigureInput trajectory;
   trajectory.rows = &run.iterations.rows;
   trajectory.map_points = &run.final_map;
   trajectory.line_map = &run.line_map;
   trajectory.linked = selection.indices;
-  page << TrajectoryFigure(trajectory, "trajectory")
+  page << "<h2 id=\"trajectory\">Trajectory over the final map</h2>\n";
+  if (run.grid) WriteGridTrajectoryFigure(page, run, trajectory);
+  page << "<div class=\"figures\">\n<figure>";
+  page << TrajectoryFigure(trajectory, "trajectory-points")
        << "<figcaption>The posture kept for every iteration (blue), the flagged ones (red), and "
           "the iterations drawn below (numbered rings, linked to their sections), over the "
           "final map ("

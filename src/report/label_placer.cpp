@@ -7,8 +7,6 @@ namespace {
 constexpr double kGlyphWidthFraction = 0.58;
 // Gap between a label and its anchor, pixels.
 constexpr double kGapPx = 4.0;
-// How many rings of positions are tried, each one line further out.
-constexpr int kRings = 4;
 
 }  // namespace
 
@@ -19,8 +17,8 @@ double EstimateTextWidth(const std::string& text, double size_px) {
   return kGlyphWidthFraction * size_px * glyphs;
 }
 
-LabelPlacer::LabelPlacer(double x_px, double y_px, double width_px, double height_px)
-    : bounds_{x_px, y_px, x_px + width_px, y_px + height_px} {}
+LabelPlacer::LabelPlacer(double x_px, double y_px, double width_px, double height_px, int rings)
+    : bounds_{x_px, y_px, x_px + width_px, y_px + height_px}, rings_(rings) {}
 
 void LabelPlacer::Reserve(double x_px, double y_px, double width_px, double height_px) {
   taken_.push_back({x_px, y_px, x_px + width_px, y_px + height_px});
@@ -38,7 +36,7 @@ std::optional<Eigen::Vector2d> LabelPlacer::Place(const Eigen::Vector2d& anchor,
                                                   const std::string& text, double size_px) {
   const double width = EstimateTextWidth(text, size_px);
   const double height = size_px;
-  for (int ring = 0; ring < kRings; ++ring) {
+  for (int ring = 0; ring < rings_; ++ring) {
     const double gap = kGapPx + ring * height;
     // Right, left, above, below, then the four diagonals; (x, y) is the box's top-left.
     const Eigen::Vector2d corners[] = {

@@ -73,6 +73,25 @@ std::string FirstExisting(const std::vector<std::string>& candidates) {
   return "";
 }
 
+// The session's occupancy grid (map.yaml + map.pgm); none for runs written before sessions wrote
+// one, or when it cannot be read (said in `notes`).
+std::optional<OccupancyGridImage> ReadGrid(const std::string& directory,
+                                           std::vector<std::string>& notes) {
+  const std::string yaml_path = directory + "/map.yaml";
+  if (!std::filesystem::exists(yaml_path)) {
+    notes.push_back("the run folder has no occupancy grid (map.yaml): `scanloc export-grid " +
+                    directory + "` writes one, over which the page then draws the trajectory");
+    return std::nullopt;
+  }
+  try {
+    return ReadOccupancyGridImage(yaml_path);
+  } catch (const std::exception& e) {
+    notes.push_back(std::string("the occupancy grid could not be read (") + e.what() +
+                    "): the trajectory is drawn over map.pcd's points");
+    return std::nullopt;
+  }
+}
+
 }  // namespace
 
 RunContents ReadRunContents(const std::string& directory, const RunInputOverrides& overrides) {
@@ -102,6 +121,7 @@ RunContents ReadRunContents(const std::string& directory, const RunInputOverride
     }
   }
 
+  run.grid = ReadGrid(directory, run.notes);
   const std::string map_path = directory + "/map.pcd";
   if (!fs::exists(map_path)) {
     run.notes.push_back("map.pcd is missing: the figures show no final map");

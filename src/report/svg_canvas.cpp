@@ -21,18 +21,17 @@ std::string Attribute(const std::string& name, const std::string& value) {
   return " " + name + "=\"" + EscapeMarkup(value) + "\"";
 }
 
-std::string Point(const Eigen::Vector2d& p) {
-  return SvgNumber(p.x()) + "," + SvgNumber(p.y());
-}
-
 }  // namespace
 
-std::string SvgNumber(double value) {
+std::string SvgNumber(double value, int decimals) {
   if (!std::isfinite(value)) return "0";
-  char buffer[48];
-  std::snprintf(buffer, sizeof buffer, "%.1f", value);
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", std::clamp(decimals, 0, 9), value);
   std::string text = buffer;
-  if (text.size() > 2 && text.compare(text.size() - 2, 2, ".0") == 0) text.resize(text.size() - 2);
+  if (text.find('.') != std::string::npos) {
+    while (text.back() == '0') text.pop_back();
+    if (text.back() == '.') text.pop_back();
+  }
   if (text == "-0") text = "0";
   return text;
 }
@@ -46,18 +45,18 @@ SvgCanvas::SvgCanvas(double width_px, double height_px, std::string id, const st
 
 void SvgCanvas::Rect(double x, double y, double width, double height, const std::string& fill,
                      const std::string& stroke, double stroke_width) {
-  body_ << "<rect x=\"" << SvgNumber(x) << "\" y=\"" << SvgNumber(y) << "\" width=\""
-        << SvgNumber(width) << "\" height=\"" << SvgNumber(height) << "\""
-        << Attribute("fill", fill) << Attribute("stroke", stroke);
-  if (stroke != "none") body_ << " stroke-width=\"" << SvgNumber(stroke_width) << "\"";
+  body_ << "<rect x=\"" << Num(x) << "\" y=\"" << Num(y) << "\" width=\"" << Num(width)
+        << "\" height=\"" << Num(height) << "\"" << Attribute("fill", fill)
+        << Attribute("stroke", stroke);
+  if (stroke != "none") body_ << " stroke-width=\"" << Num(stroke_width) << "\"";
   body_ << "/>\n";
 }
 
 void SvgCanvas::Line(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const std::string& stroke,
                      double width, const std::string& dash) {
-  body_ << "<line x1=\"" << SvgNumber(a.x()) << "\" y1=\"" << SvgNumber(a.y()) << "\" x2=\""
-        << SvgNumber(b.x()) << "\" y2=\"" << SvgNumber(b.y()) << "\"" << Attribute("stroke", stroke)
-        << " stroke-width=\"" << SvgNumber(width) << "\"";
+  body_ << "<line x1=\"" << Num(a.x()) << "\" y1=\"" << Num(a.y()) << "\" x2=\"" << Num(b.x())
+        << "\" y2=\"" << Num(b.y()) << "\"" << Attribute("stroke", stroke) << " stroke-width=\""
+        << Num(width) << "\"";
   if (!dash.empty()) body_ << Attribute("stroke-dasharray", dash);
   body_ << "/>\n";
 }
@@ -66,7 +65,7 @@ void SvgCanvas::Polyline(const std::vector<Eigen::Vector2d>& points, const std::
                          double width) {
   if (points.size() < 2) return;
   body_ << "<polyline fill=\"none\"" << Attribute("stroke", stroke) << " stroke-width=\""
-        << SvgNumber(width) << "\" stroke-linejoin=\"round\" points=\"";
+        << Num(width) << "\" stroke-linejoin=\"round\" points=\"";
   std::string previous;
   for (const Eigen::Vector2d& p : points) {
     std::string text = Point(p);
@@ -79,10 +78,9 @@ void SvgCanvas::Polyline(const std::vector<Eigen::Vector2d>& points, const std::
 
 void SvgCanvas::Circle(const Eigen::Vector2d& centre, double radius, const std::string& fill,
                        const std::string& stroke, double stroke_width) {
-  body_ << "<circle cx=\"" << SvgNumber(centre.x()) << "\" cy=\"" << SvgNumber(centre.y())
-        << "\" r=\"" << SvgNumber(radius) << "\"" << Attribute("fill", fill)
-        << Attribute("stroke", stroke);
-  if (stroke != "none") body_ << " stroke-width=\"" << SvgNumber(stroke_width) << "\"";
+  body_ << "<circle cx=\"" << Num(centre.x()) << "\" cy=\"" << Num(centre.y()) << "\" r=\""
+        << Num(radius) << "\"" << Attribute("fill", fill) << Attribute("stroke", stroke);
+  if (stroke != "none") body_ << " stroke-width=\"" << Num(stroke_width) << "\"";
   body_ << "/>\n";
 }
 
@@ -99,11 +97,11 @@ void SvgCanvas::Dots(const std::vector<Eigen::Vector2d>& points, double diameter
     const auto key = static_cast<long long>((static_cast<unsigned long long>(cx) << 32) ^
                                             (static_cast<unsigned long long>(cy) & 0xffffffffULL));
     if (!taken.insert(key).second) continue;
-    path << 'M' << SvgNumber(cx * cell_px) << ' ' << SvgNumber(cy * cell_px) << "h0";
+    path << 'M' << Num(cx * cell_px) << ' ' << Num(cy * cell_px) << "h0";
   }
   if (taken.empty()) return;
   body_ << "<path fill=\"none\"" << Attribute("stroke", colour) << " stroke-width=\""
-        << SvgNumber(diameter_px) << "\" stroke-linecap=\"round\" d=\"" << path.str() << "\"/>\n";
+        << Num(diameter_px) << "\" stroke-linecap=\"round\" d=\"" << path.str() << "\"/>\n";
 }
 
 void SvgCanvas::Arrow(const Eigen::Vector2d& tail, double heading_rad, double length_px,
@@ -121,15 +119,22 @@ void SvgCanvas::Arrow(const Eigen::Vector2d& tail, double heading_rad, double le
 }
 
 void SvgCanvas::Text(const Eigen::Vector2d& at, const std::string& text, const TextStyle& style) {
-  body_ << "<text x=\"" << SvgNumber(at.x()) << "\" y=\"" << SvgNumber(at.y()) << "\" font-size=\""
-        << SvgNumber(style.size_px) << "\"" << Attribute("text-anchor", style.anchor)
+  body_ << "<text x=\"" << Num(at.x()) << "\" y=\"" << Num(at.y()) << "\" font-size=\""
+        << Num(style.size_px) << "\"" << Attribute("text-anchor", style.anchor)
         << Attribute("fill", style.colour);
   if (style.bold) body_ << " font-weight=\"bold\"";
   body_ << ">" << EscapeMarkup(text) << "</text>\n";
 }
 
-void SvgCanvas::BeginGroup(const std::string& tooltip) {
-  body_ << "<g>";
+void SvgCanvas::Image(double x, double y, double width, double height, const std::string& href) {
+  body_ << "<image x=\"" << Num(x) << "\" y=\"" << Num(y) << "\" width=\"" << Num(width)
+        << "\" height=\"" << Num(height)
+        << "\" preserveAspectRatio=\"none\" style=\"image-rendering:pixelated\""
+        << Attribute("href", href) << "/>\n";
+}
+
+void SvgCanvas::BeginGroup(const std::string& tooltip, const std::string& css_class) {
+  body_ << "<g" << (css_class.empty() ? "" : Attribute("class", css_class)) << ">";
   if (!tooltip.empty()) body_ << "<title>" << EscapeMarkup(tooltip) << "</title>";
   body_ << '\n';
   open_.push_back('g');
@@ -137,9 +142,9 @@ void SvgCanvas::BeginGroup(const std::string& tooltip) {
 
 void SvgCanvas::BeginClippedGroup(double x, double y, double width, double height) {
   const std::string clip_id = id_ + "-clip" + std::to_string(clips_++);
-  body_ << "<clipPath" << Attribute("id", clip_id) << "><rect x=\"" << SvgNumber(x) << "\" y=\""
-        << SvgNumber(y) << "\" width=\"" << SvgNumber(width) << "\" height=\"" << SvgNumber(height)
-        << "\"/></clipPath>\n<g" << Attribute("clip-path", "url(#" + clip_id + ")") << ">\n";
+  body_ << "<clipPath" << Attribute("id", clip_id) << "><rect x=\"" << Num(x) << "\" y=\"" << Num(y)
+        << "\" width=\"" << Num(width) << "\" height=\"" << Num(height) << "\"/></clipPath>\n<g"
+        << Attribute("clip-path", "url(#" + clip_id + ")") << ">\n";
   open_.push_back('g');
 }
 
@@ -167,9 +172,8 @@ std::string SvgCanvas::Finish() const {
   if (!open_.empty()) throw std::logic_error("SvgCanvas::Finish: a group or link is open");
   std::ostringstream svg;
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\"" << Attribute("id", id_) << " width=\""
-      << SvgNumber(width_px_) << "\" height=\"" << SvgNumber(height_px_) << "\" viewBox=\"0 0 "
-      << SvgNumber(width_px_) << ' ' << SvgNumber(height_px_)
-      << "\" font-family=\"sans-serif\" role=\"img\">\n"
+      << Num(width_px_) << "\" height=\"" << Num(height_px_) << "\" viewBox=\"0 0 "
+      << Num(width_px_) << ' ' << Num(height_px_) << "\" font-family=\"sans-serif\" role=\"img\">\n"
       << body_.str() << "</svg>\n";
   return svg.str();
 }

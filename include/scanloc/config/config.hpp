@@ -15,6 +15,7 @@
 #include "scanloc/geometry/laser_scan.hpp"
 #include "scanloc/io/carmen_log.hpp"
 #include "scanloc/likelihood/candidate_ranking.hpp"
+#include "scanloc/maps/occupancy_grid.hpp"
 #include "scanloc/maps/point_map.hpp"
 #include "scanloc/refinement/refiner.hpp"
 #include "scanloc/session/session.hpp"
@@ -31,6 +32,9 @@ struct Config {
   RefinerOptions refiner;
   SessionOptions session;  // session
   CarmenOptions log;       // log: how CARMEN logs are read
+  // occupancy_grid: the map_server grid (map.pgm + map.yaml) a session writes into its run folder
+  bool write_occupancy_grid = true;
+  OccupancyGridOptions occupancy_grid;
 
   // Throws std::invalid_argument naming the first option out of its range or domain.
   void Validate() const;

@@ -21,11 +21,26 @@ struct OccupancyGridFiles {
   std::string yaml_path;   // <dir>/<name>.yaml
 };
 
+// The two files' paths, <dir>/<name>.pgm and <dir>/<name>.yaml.
+OccupancyGridFiles OccupancyGridPaths(const std::string& dir, const std::string& name = "map");
+
 // Writes <dir>/<name>.pgm (binary P5, row 0 at the top, i.e. the highest y) and <dir>/<name>.yaml
 // (image, resolution, origin [x, y, 0] of the lower-left pixel, negate 0, occupied_thresh,
 // free_thresh), each atomically. Throws std::runtime_error when they cannot be written.
 OccupancyGridFiles WriteOccupancyGrid(const std::string& dir, const OccupancyGrid& grid,
                                       const std::string& name = "map");
+
+// A grid as written: map_saver's trinary pixels, row 0 the image's top (the highest y).
+struct OccupancyGridImage {
+  double resolution_m = 0.05;
+  Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();  // world position of the lower-left corner
+  std::size_t width = 0, height = 0;
+  std::vector<unsigned char> pixels;  // width × height, kPgmOccupied / kPgmFree / kPgmUnknown
+};
+
+// Reads a map.yaml as WriteOccupancyGrid writes it (image, resolution, origin) and its binary PGM.
+// Throws std::runtime_error naming the file and what was expected.
+OccupancyGridImage ReadOccupancyGridImage(const std::string& yaml_path);
 
 struct GridFromLogResult {
   OccupancyGrid grid;

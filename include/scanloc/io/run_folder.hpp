@@ -1,7 +1,8 @@
 #pragma once
 // A session's run folder: iterations.jsonl (one record per iteration, written as it happens),
-// and at the end trajectory.tum, map.pcd and summary.json, each written whole or not at all, so an
-// interrupted session still leaves every file complete and readable.
+// and at the end trajectory.tum, map.pcd, the occupancy grid (map.pgm + map.yaml) and summary.json,
+// each written whole or not at all, so an interrupted session still leaves every file complete and
+// readable.
 
 #include <fstream>
 #include <nlohmann/json_fwd.hpp>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "scanloc/io/trajectory.hpp"
+#include "scanloc/maps/occupancy_grid.hpp"
 #include "scanloc/maps/point_map.hpp"
 #include "scanloc/session/session.hpp"
 
@@ -18,15 +20,17 @@ nlohmann::json ToJson(const IterationRecord& record);
 
 class RunFolder {
  public:
-  // Creates the folder (and parents) if needed; throws std::runtime_error naming it otherwise.
-  explicit RunFolder(const std::string& directory);
+  // Creates the folder (and parents) if needed; throws std::runtime_error naming it when it
+  // cannot, or when it exists with anything in it and `overwrite` is false (nothing is touched).
+  explicit RunFolder(const std::string& directory, bool overwrite = false);
   RunFolder(const RunFolder&) = delete;
   RunFolder& operator=(const RunFolder&) = delete;
 
   // Appends one complete line to iterations.jsonl and remembers the posture for the trajectory.
   void Record(const IterationRecord& record);
-  // Writes trajectory.tum, map.pcd and summary.json (the given summary plus file names).
-  void Finish(const PointMap& map, nlohmann::json summary);
+  // Writes trajectory.tum, map.pcd, map.pgm + map.yaml when `grid` is given, and summary.json
+  // (the given summary plus file names), the summary last.
+  void Finish(const PointMap& map, nlohmann::json summary, const OccupancyGrid* grid = nullptr);
 
   const std::string& directory() const { return directory_; }
   std::string Path(const std::string& name) const { return directory_ + "/" + name; }

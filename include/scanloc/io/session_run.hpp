@@ -8,9 +8,11 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json_fwd.hpp>
+#include <optional>
 #include <string>
 
 #include "scanloc/io/run_folder.hpp"
+#include "scanloc/maps/occupancy_grid.hpp"
 #include "scanloc/session/iteration.hpp"
 #include "scanloc/session/session.hpp"
 
@@ -20,6 +22,9 @@ struct SessionRunOptions {
   std::size_t max_scans = 0;                // stop after this many scans (0: all)
   bool progress = true;                     // a progress line on stderr every 2 s
   const std::atomic<bool>* stop = nullptr;  // when set (Ctrl-C), the loop ends early
+  // When set, the scans CastIntoGrid picks (io/run_grid.hpp) are kept for an occupancy grid, at
+  // the postures the session kept.
+  std::optional<OccupancyGridOptions> occupancy_grid;
 };
 
 // What a run did, counted as it went.
@@ -41,6 +46,7 @@ using SessionFactory = std::function<std::unique_ptr<Session>(const IterationSou
 struct SessionRun {
   std::unique_ptr<Session> session;  // null when the source had no scan
   SessionCounts counts;
+  std::optional<OccupancyGridBuilder> grid;  // when options.occupancy_grid is set
 };
 
 // Processes the source's iterations one by one, recording each in `run`.

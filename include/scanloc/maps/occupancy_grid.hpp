@@ -56,18 +56,24 @@ class OccupancyGridBuilder {
   OccupancyGridBuilder& operator=(const OccupancyGridBuilder&) = delete;
   OccupancyGridBuilder(OccupancyGridBuilder&&) = default;
 
-  // Keeps the scan's valid beams as rays from T_world_laser's origin to their end points.
+  // Keeps the scan's ranges and T_world_laser; its valid beams become rays from the laser to
+  // their end points.
   void AddScan(const LaserScan& scan, const Pose2D& T_world_laser);
-  std::size_t scans() const { return scan_starts_.size(); }
+  std::size_t scans() const { return scans_.size(); }
   // Casts every ray, scan by scan (misses first, then the scan's hits). An empty builder gives an
   // empty grid (width = height = 0).
   OccupancyGrid Build() const;
 
  private:
+  struct KeptScan {
+    LaserScan scan;  // layout and ranges only: 8 bytes a beam, half a world end point's 16
+    Pose2D T_world_laser;
+  };
+  // The world end points of the scan's valid beams.
+  static void EndPoints(const KeptScan& kept, std::vector<Eigen::Vector2d>& points);
+
   OccupancyGridOptions options_;
-  std::vector<Eigen::Vector2d> origins_;    // one per scan
-  std::vector<std::size_t> scan_starts_;    // first end point of each scan
-  std::vector<Eigen::Vector2d> endpoints_;  // world end points of all scans
+  std::vector<KeptScan> scans_;
 };
 
 }  // namespace scanloc

@@ -11,8 +11,10 @@ namespace scanloc {
 
 class LabelPlacer {
  public:
-  // Labels must stay inside the rectangle [x, x + width] × [y, y + height] (pixels).
-  LabelPlacer(double x_px, double y_px, double width_px, double height_px);
+  // Labels must stay inside the rectangle [x, x + width] × [y, y + height] (pixels). `rings`
+  // rings of positions are tried around an anchor, each a line further out: 1 keeps every label
+  // beside its anchor and leaves out those that find no room there.
+  LabelPlacer(double x_px, double y_px, double width_px, double height_px, int rings = 4);
   // The baseline start of a label of `text` at `size_px`, beside `anchor`: the first of a few
   // positions around it (then further away) that overlaps no label placed so far; nullopt when
   // none is free, and the label is best left out.
@@ -27,6 +29,7 @@ class LabelPlacer {
   };
   bool Free(const Rect& r) const;
   Rect bounds_;
+  int rings_;
   std::vector<Rect> taken_;
 };
 

@@ -10,6 +10,9 @@
 
 namespace scanloc {
 
+// A number for an SVG coordinate: rounded to `decimals` (0.1 by default), without trailing zeros.
+std::string SvgNumber(double value, int decimals = 1);
+
 struct TextStyle {
   double size_px = 12.0;
   std::string anchor = "start";  // start, middle or end
@@ -25,6 +28,9 @@ class SvgCanvas {
   SvgCanvas(const SvgCanvas&) = delete;
   SvgCanvas& operator=(const SvgCanvas&) = delete;
 
+  // Decimals of the coordinates written from now on (default 1, i.e. 0.1 px); figures that the
+  // page magnifies need more.
+  void set_decimals(int decimals) { decimals_ = decimals; }
   double width() const { return width_px_; }
   double height() const { return height_px_; }
 
@@ -45,9 +51,13 @@ class SvgCanvas {
   void Arrow(const Eigen::Vector2d& tail, double heading_rad, double length_px,
              const std::string& colour, double width_px);
   void Text(const Eigen::Vector2d& at, const std::string& text, const TextStyle& style = {});
+  // A raster image (e.g. a data: URI) stretched over the rectangle, its pixels drawn as squares
+  // when magnified.
+  void Image(double x, double y, double width, double height, const std::string& href);
 
-  // Groups nest; each Begin… needs its End. A group's tooltip is shown on hover.
-  void BeginGroup(const std::string& tooltip = "");
+  // Groups nest; each Begin… needs its End. A group's tooltip is shown on hover; `css_class`
+  // lets the page style what it holds.
+  void BeginGroup(const std::string& tooltip = "", const std::string& css_class = "");
   // A group whose content is clipped to the rectangle.
   void BeginClippedGroup(double x, double y, double width, double height);
   void EndGroup();
@@ -66,9 +76,9 @@ class SvgCanvas {
   // Writes </element> for the innermost open element, which must be `element`.
   void Close(char element, const char* caller);
   int clips_ = 0;
+  int decimals_ = 1;
+  std::string Num(double value) const { return SvgNumber(value, decimals_); }
+  std::string Point(const Eigen::Vector2d& p) const { return Num(p.x()) + "," + Num(p.y()); }
 };
-
-// A number for an SVG coordinate: rounded to 0.1, without a trailing ".0".
-std::string SvgNumber(double value);
 
 }  // namespace scanloc

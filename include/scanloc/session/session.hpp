@@ -96,6 +96,7 @@ class Session {
 
   const PointMap& point_map() const { return point_map_; }
   const LineMap& line_map() const { return line_map_; }
+  const LaserMounting& mounting() const { return mounting_; }
   std::size_t iterations() const { return count_; }
 
  private:
