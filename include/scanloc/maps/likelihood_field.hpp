@@ -1,0 +1,48 @@
+#pragma once
+// A likelihood field over a map: a grid whose cells hold exp(−d²/2σ²) of the distance d from the
+// cell's centre to the nearest map point (0 beyond 3σ), and coarser levels whose cells hold the
+// maximum over a block of 2^h × 2^h finer cells starting at them: the upper bounds a branch and
+// bound search over translations needs (Olson 2009; Hess et al. 2016).
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace scanloc {
+
+struct LikelihoodFieldOptions {
+  double resolution_m = 0.05;  // side of a cell, metres
+  double sigma_m = 0.1;        // σ of the field around each point, metres
+  int levels = 6;              // levels 0 (the field) … levels − 1 (blocks of 2^(levels−1))
+  // Throws std::invalid_argument naming the first option out of its domain.
+  void Validate() const;
+};
+
+class LikelihoodField {
+ public:
+  // The field of `points` over the square cells covering [min_world, max_world].
+  LikelihoodField(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& min_world,
+                  const Eigen::Vector2d& max_world, const LikelihoodFieldOptions& options = {});
+
+  // Level h's value of cell (ix, iy); 0 outside the grid.
+  float At(int level, int ix, int iy) const {
+    if (ix < 0 || iy < 0 || ix >= width_ || iy >= height_) return 0.0f;
+    return levels_[level][static_cast<std::size_t>(iy) * width_ + ix];
+  }
+  // The cell holding a world point (may lie outside the grid).
+  Eigen::Vector2i Cell(const Eigen::Vector2d& world) const;
+  int levels() const { return static_cast<int>(levels_.size()); }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  double resolution_m() const { return resolution_m_; }
+
+ private:
+  void Splat(const Eigen::Vector2d& point, double sigma_m);
+  void BuildLevel(int level);
+
+  Eigen::Vector2d origin_world_;  // the corner of cell (0, 0)
+  double resolution_m_;
+  int width_ = 0, height_ = 0;
+  std::vector<std::vector<float>> levels_;
+};
+
+}  // namespace scanloc

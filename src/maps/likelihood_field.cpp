@@ -1,0 +1,83 @@
+#include "scanloc/maps/likelihood_field.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace scanloc {
+namespace {
+
+// The field is cut at this many σ (exp(−4.5) ≈ 0.011).
+constexpr double kCutoffSigmas = 3.0;
+// A grid larger than this many cells is refused (about 1.6 GB over all levels of floats).
+constexpr double kMaxCells = 6.4e7;
+
+}  // namespace
+
+void LikelihoodFieldOptions::Validate() const {
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("LikelihoodFieldOptions: ") + what);
+  };
+  require(std::isfinite(resolution_m) && resolution_m > 0.0, "resolution_m must be positive");
+  require(std::isfinite(sigma_m) && sigma_m > 0.0, "sigma_m must be positive");
+  require(levels >= 1 && levels <= 16, "levels must be in [1, 16]");
+}
+
+LikelihoodField::LikelihoodField(const std::vector<Eigen::Vector2d>& points,
+                                 const Eigen::Vector2d& min_world, const Eigen::Vector2d& max_world,
+                                 const LikelihoodFieldOptions& options)
+    : origin_world_(min_world), resolution_m_(options.resolution_m) {
+  options.Validate();
+  if (!(max_world.array() >= min_world.array()).all() || !min_world.allFinite() ||
+      !max_world.allFinite())
+    throw std::invalid_argument("LikelihoodField: the box's corners must be finite and ordered");
+  const Eigen::Vector2d cells = (max_world - min_world) / resolution_m_;
+  if ((cells.x() + 1.0) * (cells.y() + 1.0) > kMaxCells)
+    throw std::invalid_argument("LikelihoodField: the box needs more than 6.4e7 cells");
+  width_ = static_cast<int>(std::ceil(cells.x())) + 1;
+  height_ = static_cast<int>(std::ceil(cells.y())) + 1;
+  levels_.assign(1, std::vector<float>(static_cast<std::size_t>(width_) * height_, 0.0f));
+  for (const Eigen::Vector2d& p : points) Splat(p, options.sigma_m);
+  for (int h = 1; h < options.levels; ++h) BuildLevel(h);
+}
+
+Eigen::Vector2i LikelihoodField::Cell(const Eigen::Vector2d& world) const {
+  const Eigen::Vector2d c = (world - origin_world_) / resolution_m_;
+  return {static_cast<int>(std::floor(c.x())), static_cast<int>(std::floor(c.y()))};
+}
+
+// Raises the cells within kCutoffSigmas·σ of the point to exp(−d²/2σ²) of their centre's distance.
+void LikelihoodField::Splat(const Eigen::Vector2d& point, double sigma_m) {
+  const int reach = static_cast<int>(std::ceil(kCutoffSigmas * sigma_m / resolution_m_));
+  const Eigen::Vector2i centre = Cell(point);
+  const double inv_two_sigma2 = 1.0 / (2.0 * sigma_m * sigma_m);
+  std::vector<float>& field = levels_[0];
+  for (int iy = std::max(0, centre.y() - reach); iy <= std::min(height_ - 1, centre.y() + reach);
+       ++iy)
+    for (int ix = std::max(0, centre.x() - reach); ix <= std::min(width_ - 1, centre.x() + reach);
+         ++ix) {
+      const Eigen::Vector2d cell_centre =
+          origin_world_ + resolution_m_ * Eigen::Vector2d(ix + 0.5, iy + 0.5);
+      const float value =
+          static_cast<float>(std::exp(-(cell_centre - point).squaredNorm() * inv_two_sigma2));
+      float& cell = field[static_cast<std::size_t>(iy) * width_ + ix];
+      cell = std::max(cell, value);
+    }
+}
+
+// Level h's cell (x, y) = the maximum of level h−1 over (x, y), (x+s, y), (x, y+s), (x+s, y+s),
+// s = 2^(h−1): the maximum over the 2^h × 2^h block of the field starting at (x, y).
+void LikelihoodField::BuildLevel(int level) {
+  const int step = 1 << (level - 1);
+  const int previous = level - 1;
+  std::vector<float> values(levels_[previous].size());
+  for (int iy = 0; iy < height_; ++iy)
+    for (int ix = 0; ix < width_; ++ix)
+      values[static_cast<std::size_t>(iy) * width_ + ix] =
+          std::max({At(previous, ix, iy), At(previous, ix + step, iy), At(previous, ix, iy + step),
+                    At(previous, ix + step, iy + step)});
+  levels_.push_back(std::move(values));
+}
+
+}  // namespace scanloc

@@ -1,0 +1,206 @@
+#include "scanloc/session/wide_search.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+#include "scanloc/maps/line_map.hpp"
+#include "scanloc/maps/point_map.hpp"
+
+namespace scanloc {
+namespace {
+
+struct Node {
+  int heading = 0;  // index into the rotated beam sets
+  int ox = 0, oy = 0;
+  int level = 0;
+  float score = 0.0f;
+};
+
+// The scan's endpoints in the laser frame: valid beams, evenly subsampled to at most max_beams.
+std::vector<Eigen::Vector2d> Endpoints(const LaserScan& scan, int max_beams, double& max_range_m) {
+  std::vector<std::size_t> valid;
+  for (std::size_t i = 0; i < scan.size(); ++i)
+    if (scan.IsValid(i)) valid.push_back(i);
+  const std::size_t stride = std::max<std::size_t>(
+      1, (valid.size() + max_beams - 1) / static_cast<std::size_t>(max_beams));
+  std::vector<Eigen::Vector2d> points;
+  max_range_m = 0.0;
+  for (std::size_t k = 0; k < valid.size(); k += stride) {
+    const double r = scan.ranges_m[valid[k]], bearing = scan.layout.Bearing(valid[k]);
+    points.emplace_back(r * std::cos(bearing), r * std::sin(bearing));
+    max_range_m = std::max(max_range_m, r);
+  }
+  return points;
+}
+
+// The map points within `radius_m` of the centre: the point map's, and the line map sampled.
+std::vector<Eigen::Vector2d> MapPoints(const MapView& map, const Eigen::Vector2d& centre,
+                                       double radius_m, double spacing_m) {
+  std::vector<Eigen::Vector2d> points;
+  if (map.points != nullptr && !map.points->empty())
+    for (const auto& [index, d2] : map.points->RadiusSearch(centre, radius_m))
+      points.push_back(map.points->point(index));
+  if (map.lines != nullptr)
+    for (const Eigen::Vector2d& p : SampleLineMap(*map.lines, spacing_m))
+      if ((p - centre).norm() <= radius_m) points.push_back(p);
+  return points;
+}
+
+// Exact branch and bound over translations, every heading at the top: keeps the best leaves that
+// are distinct (no two `Near`), so that a second peak is not crowded out by the first one's slopes.
+class BranchAndBound {
+ public:
+  using NearFn = std::function<bool(const Node&, const Node&)>;
+  BranchAndBound(const LikelihoodField& field, std::vector<std::vector<Eigen::Vector2i>> cells,
+                 int half_cells, std::size_t pool, NearFn near)
+      : field_(field),
+        cells_(std::move(cells)),
+        half_(half_cells),
+        pool_(pool),
+        near_(std::move(near)) {}
+
+  // The distinct best leaves, best first, found depth first from the top-level nodes of every
+  // heading, best first.
+  std::vector<Node> Run(long long& nodes_scored) {
+    const int top = field_.levels() - 1, step = 1 << top;
+    std::vector<Node> roots;
+    for (int h = 0; h < static_cast<int>(cells_.size()); ++h)
+      for (int oy = -half_; oy <= half_; oy += step)
+        for (int ox = -half_; ox <= half_; ox += step) roots.push_back(Scored({h, ox, oy, top}));
+    SortBestFirst(roots);
+    for (const Node& root : roots) Descend(root);
+    nodes_scored = scored_;
+    SortBestFirst(best_);
+    return best_;
+  }
+
+ private:
+  static void SortBestFirst(std::vector<Node>& nodes) {
+    std::stable_sort(nodes.begin(), nodes.end(),
+                     [](const Node& a, const Node& b) { return a.score > b.score; });
+  }
+  Node Scored(Node node) {
+    float sum = 0.0f;
+    for (const Eigen::Vector2i& c : cells_[node.heading])
+      sum += field_.At(node.level, c.x() + node.ox, c.y() + node.oy);
+    node.score = cells_[node.heading].empty() ? 0.0f : sum / cells_[node.heading].size();
+    ++scored_;
+    return node;
+  }
+  float Threshold() const {
+    if (best_.size() < pool_) return -1.0f;
+    float worst = best_.front().score;
+    for (const Node& n : best_) worst = std::min(worst, n.score);
+    return worst;
+  }
+  // A leaf near a better kept one is dropped; otherwise it replaces the kept ones near it (all
+  // worse), or the worst when the pool is full.
+  void Offer(const Node& leaf) {
+    for (const Node& kept : best_)
+      if (near_(leaf, kept) && kept.score >= leaf.score) return;
+    best_.erase(std::remove_if(best_.begin(), best_.end(),
+                               [&](const Node& kept) { return near_(leaf, kept); }),
+                best_.end());
+    if (best_.size() >= pool_)
+      best_.erase(std::min_element(best_.begin(), best_.end(),
+                                   [](const Node& a, const Node& b) { return a.score < b.score; }));
+    best_.push_back(leaf);
+  }
+
+  void Descend(const Node& node) {
+    if (node.score <= Threshold()) return;
+    if (node.level == 0) return Offer(node);
+    const int step = 1 << (node.level - 1);
+    std::vector<Node> children;
+    for (const int dy : {0, step})
+      for (const int dx : {0, step})
+        if (node.ox + dx <= half_ && node.oy + dy <= half_)
+          children.push_back(Scored({node.heading, node.ox + dx, node.oy + dy, node.level - 1}));
+    SortBestFirst(children);
+    for (const Node& child : children) Descend(child);
+  }
+
+  const LikelihoodField& field_;
+  std::vector<std::vector<Eigen::Vector2i>> cells_;  // per heading: beam cells at offset 0
+  int half_;
+  std::size_t pool_;
+  NearFn near_;
+  std::vector<Node> best_;  // distinct leaves, at most pool_
+  long long scored_ = 0;
+};
+
+}  // namespace
+
+void WideSearchOptions::Validate() const {
+  field.Validate();
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("WideSearchOptions: ") + what);
+  };
+  require(max_candidates >= 1 && max_candidates <= 1000, "max_candidates must be in [1, 1000]");
+  require(std::isfinite(min_separation_m) && min_separation_m >= 0.0, "min_separation_m >= 0");
+  require(std::isfinite(min_separation_rad) && min_separation_rad >= 0.0,
+          "min_separation_rad >= 0");
+  require(max_beams >= 1, "max_beams must be >= 1");
+  require(std::isfinite(min_heading_step_rad) && min_heading_step_rad > 0.0 &&
+              min_heading_step_rad < 1.0,
+          "min_heading_step_rad must be in (0, 1)");
+}
+
+WideSearchResult WideSearch(const MapView& map, const LaserScan& scan, const SearchWindow& window,
+                            const WideSearchOptions& options) {
+  options.Validate();
+  if (!(window.half_width_m >= 0.0) || !(window.half_yaw_rad >= 0.0) ||
+      !std::isfinite(window.half_width_m) || !std::isfinite(window.half_yaw_rad))
+    throw std::invalid_argument("WideSearch: the window's half sizes must be finite and >= 0");
+  const auto start = std::chrono::steady_clock::now();
+  WideSearchResult result;
+  double max_range_m = 0.0;
+  const std::vector<Eigen::Vector2d> endpoints = Endpoints(scan, options.max_beams, max_range_m);
+  const double res = options.field.resolution_m;
+  const Eigen::Vector2d centre(window.centre.x_m, window.centre.y_m);
+  const double reach = window.half_width_m + max_range_m + 3.0 * options.field.sigma_m;
+  const std::vector<Eigen::Vector2d> points =
+      endpoints.empty() || map.empty() ? std::vector<Eigen::Vector2d>{}
+                                       : MapPoints(map, centre, reach * std::sqrt(2.0), 0.5 * res);
+  if (points.empty()) return result;
+  const LikelihoodField field(points, centre - Eigen::Vector2d(reach, reach),
+                              centre + Eigen::Vector2d(reach, reach), options.field);
+  // Headings: a step that moves the farthest endpoint by at most one cell (Hess et al. 2016).
+  const double step_rad =
+      std::max(options.min_heading_step_rad,
+               std::acos(std::max(-1.0, 1.0 - res * res / (2.0 * max_range_m * max_range_m))));
+  const int half_headings = static_cast<int>(std::ceil(window.half_yaw_rad / step_rad));
+  std::vector<std::vector<Eigen::Vector2i>> cells;
+  std::vector<double> yaws;
+  for (int k = -half_headings; k <= half_headings; ++k) {
+    Pose2D pose = window.centre;
+    pose.yaw_rad = NormalizeAngle(pose.yaw_rad + k * step_rad);
+    std::vector<Eigen::Vector2i> heading_cells;
+    for (const Eigen::Vector2d& p : endpoints)
+      heading_cells.push_back(field.Cell(pose.Transform(p)));
+    cells.push_back(std::move(heading_cells));
+    yaws.push_back(pose.yaw_rad);
+  }
+  result.headings = static_cast<int>(yaws.size());
+  const int half_cells = static_cast<int>(std::ceil(window.half_width_m / res));
+  const double separation_cells = options.min_separation_m / res;
+  const double separation_headings = options.min_separation_rad / step_rad;
+  auto near = [&](const Node& a, const Node& b) {
+    return std::hypot(a.ox - b.ox, a.oy - b.oy) < separation_cells &&
+           std::abs(a.heading - b.heading) < separation_headings;
+  };
+  BranchAndBound search(field, std::move(cells), half_cells,
+                        static_cast<std::size_t>(options.max_candidates), near);
+  for (const Node& leaf : search.Run(result.nodes_scored))
+    result.candidates.push_back({Pose2D{window.centre.x_m + leaf.ox * res,
+                                        window.centre.y_m + leaf.oy * res, yaws[leaf.heading]},
+                                 leaf.score});
+  result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace scanloc
