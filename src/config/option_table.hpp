@@ -147,6 +147,18 @@ void VisitSession(C& c, V& v) {
   v("session.insert_rotation_rad", s.insert_rotation_rad, kAngle, "... or turned this, rad");
   v("session.insert_unvalidated", s.insert_unvalidated,
     "let scans that were not validated extend the map");
+  v("session.unconfirmed_takes_prediction", s.unconfirmed_takes_prediction,
+    "a scan the rules do not confirm keeps the odometry prediction, not its refinement ...");
+  v("session.prediction_disproved_cost_ratio", s.prediction_disproved_cost_ratio, Bounds{1, 100},
+    "... unless the prediction's cost (3.11) exceeds this many times the refinement's");
+  v("session.learned_max_expect_value", s.learned_max_expect_value,
+    "rule 2's E_max is the laser signature's bound (validation's is its prior); false: recorded only");
+  v("session.signature_window", s.signature.window, Bounds{0, 100000},
+    "laser signature: the confirmed scans it remembers; 0: nothing learned");
+  v("session.signature_min_samples", s.signature.min_samples, Bounds{1, 100000},
+    "laser signature: confirmed scans before its bound differs from validation's E_max");
+  v("session.signature_spread_factor", s.signature.spread_factor, Bounds{0.1, 100},
+    "laser signature: E_max = median EV + this · robust σ of the remembered EVs");
   v("session.free_space_margin_m", s.extension.free_space_margin_m, Bounds{0, 100},
     "carving: a point more than margin + margin_per_m·r in front of a return is seen through, m; "
     "0: no carving");
@@ -182,6 +194,36 @@ void VisitOccupancyGrid(C& c, V& v) {
     "the grid's cell side, m");
 }
 
+template <class C, class V>
+void VisitRecovery(C& c, V& v) {
+  auto& r = c.session.recovery;
+  v("recovery.lost_after_unconfirmed", r.lost_after_unconfirmed, Bounds{0, 1e6},
+    "localised scans in a row not confirmed before the session is lost and searches wide; 0: never");
+  v("recovery.min_half_width_m", r.min_half_width_m, Bounds{0, 1e3},
+    "wide search: the window's half width at least, m ...");
+  v("recovery.translation_error_per_m", r.translation_error_per_m, Bounds{0, 10},
+    "... plus this per metre driven since the last confirmed scan ...");
+  v("recovery.max_half_width_m", r.max_half_width_m, Bounds{0, 1e3}, "... at most this, m");
+  v("recovery.min_half_yaw_rad", r.min_half_yaw_rad, kAngle,
+    "wide search: the headings within ± this at least, rad ...");
+  v("recovery.heading_error_per_rad", r.heading_error_per_rad, Bounds{0, 10},
+    "... plus this per radian turned since the last confirmed scan ...");
+  v("recovery.heading_error_per_m", r.heading_error_per_m, Bounds{0, 10},
+    "... plus this (rad) per metre driven ...");
+  v("recovery.max_half_yaw_rad", r.max_half_yaw_rad, kAngle, "... at most this, rad");
+  auto& w = r.search;
+  v("recovery.search_resolution_m", w.field.resolution_m, Bounds{1e-3, 10},
+    "wide search: the likelihood field's cell, m");
+  v("recovery.search_sigma_m", w.field.sigma_m, Bounds{1e-3, 10},
+    "wide search: the field's σ around each map point, m");
+  v("recovery.search_candidates", w.max_candidates, Bounds{1, 1000},
+    "wide search: distinct postures handed to the Likelihood Test");
+  v("recovery.search_max_beams", w.max_beams, Bounds{1, 1e5},
+    "wide search: valid beams scored, evenly subsampled");
+  v("recovery.search_min_heading_step_rad", w.min_heading_step_rad, Bounds{1e-4, 0.5},
+    "wide search: headings at least this far apart, rad");
+}
+
 // Every option, in the order of the help text.
 template <class C, class V>
 void VisitOptions(C& c, V& v) {
@@ -189,6 +231,7 @@ void VisitOptions(C& c, V& v) {
   VisitValidation(c, v);
   VisitRefinement(c, v);
   VisitSession(c, v);
+  VisitRecovery(c, v);
   VisitLog(c, v);
   VisitOccupancyGrid(c, v);
 }

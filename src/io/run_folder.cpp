@@ -54,11 +54,25 @@ nlohmann::json ToJson(const IterationRecord& r) {
                           {keys::kRefine, 1e3 * refine_s},
                           {keys::kInsert, 1e3 * r.insert_s},
                           {keys::kTotal, 1e3 * r.total_s}}}};
+  if (r.lost) out[keys::kLost] = true;
+  if (r.recovered) out[keys::kRecovered] = true;
+  if (r.search_window && r.search) {
+    const SearchWindow& w = *r.search_window;
+    out[keys::kSearch] = {{keys::kCentre, ToJson(w.centre)},
+                          {keys::kHalfWidthM, w.half_width_m},
+                          {keys::kHalfYawRad, w.half_yaw_rad},
+                          {keys::kHeadings, r.search->headings},
+                          {keys::kNodesScored, r.search->nodes_scored},
+                          {keys::kFound, r.search->candidates.size()},
+                          {keys::kTimeS, r.search->time_s}};
+  }
   const RankedCandidate* kept = r.Kept();
   if (localisation && !localisation->evaluated.empty()) {
     out["candidates"] = EvaluatedToJson(*localisation)["candidates"];
     out["chosen"] = kept ? nlohmann::json(kept->candidate.label) : nlohmann::json(nullptr);
     out["problems"] = localisation->problems;
+    out[keys::kMaxExpectValueM] = r.max_expect_value_m;
+    out[keys::kSignatureExpectValueM] = r.signature_expect_value_m;
   }
   if (kept) {
     out["refinement"] = ToJson(*kept->refinement);

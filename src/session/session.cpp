@@ -20,6 +20,14 @@ bool MovedMoreThan(const Pose2D& from, const Pose2D& to, double translation_m,
   return std::hypot(delta.x_m, delta.y_m) > translation_m || std::abs(delta.yaw_rad) > rotation_rad;
 }
 
+// The odometry prediction (the first candidate) is disproved when its cost (3.11) exceeds
+// cost_ratio times the kept refinement's.
+bool PredictionDisproved(const LocalisationResult& result, double cost_ratio) {
+  const RankedCandidate* kept = result.Kept();
+  if (kept == nullptr || result.evaluated.empty()) return false;
+  return result.evaluated.front().cost > cost_ratio * kept->cost;
+}
+
 }  // namespace
 
 void SessionOptions::Validate() const {
@@ -38,6 +46,8 @@ void SessionOptions::Validate() const {
           "free_space_margin_per_m must be in [0, 1)");
   require(insert_translation_m >= 0.0 && insert_rotation_rad >= 0.0,
           "insert thresholds must be >= 0");
+  signature.Validate();
+  recovery.Validate();
   require(std::isfinite(initial_pose.x_m) && std::isfinite(initial_pose.y_m) &&
               std::isfinite(initial_pose.yaw_rad),
           "initial_pose must be finite");
@@ -49,7 +59,9 @@ Session::Session(const SessionConfig& config, LaserMounting mounting, LineMap li
       localisation_(config.localisation),
       mounting_(mounting),
       line_map_(std::move(line_map)),
-      point_map_(std::move(point_map)) {
+      point_map_(std::move(point_map)),
+      signature_(options_.signature),
+      drift_(options_.recovery) {
   options_.Validate();
   localisation_.validation.Validate();
   localisation_.scoring.test.Validate();
@@ -64,6 +76,8 @@ IterationRecord Session::Process(const Iteration& iteration) {
   record.timestamp_s = iteration.timestamp_s;
   record.origin = iteration.origin;
   record.prediction = Predict(iteration);
+  if (iteration.odometry && last_odometry_)
+    drift_.Moved(Between(*last_odometry_, *iteration.odometry));
   if (View().empty() && iteration.external_candidates.empty()) {
     // Nothing to localise against: the posture is the prediction (the origin at first, §3.2.2).
     record.first = count_ == 0;
@@ -140,18 +154,46 @@ std::vector<Candidate> Session::MakeCandidates(const Pose2D& prediction,
                               options_);
 }
 
-// Localise from the candidates; the refinement kept is the posture, validated or not. A posture
-// the rules do not validate is still the best guess (flagged): keeping the odometry instead
-// would carry its heading error in fast turns into every later scan.
+// Localise from the candidates (with the wide search's when lost), rule 2's E_max from the laser
+// signature when so configured. A confirmed refinement is the posture and teaches the signature;
+// an unconfirmed one is flagged and, with unconfirmed_takes_prediction, the posture stays the
+// prediction unless the data disproves it.
 void Session::LocaliseInto(IterationRecord& record, const Iteration& iteration) {
-  record.localisation =
-      Localise(View(), iteration.scan, MakeCandidates(record.prediction, iteration), mounting_,
-               localisation_, RefinePolicy::kBestValid, options_.max_refined_candidates);
+  LocalisationOptions options = localisation_;
+  record.signature_expect_value_m =
+      signature_.ExpectValueBound(localisation_.validation.max_expect_value_m);
+  if (options_.learned_max_expect_value)
+    options.validation.max_expect_value_m = record.signature_expect_value_m;
+  record.max_expect_value_m = options.validation.max_expect_value_m;
+  std::vector<Candidate> candidates = MakeCandidates(record.prediction, iteration);
+  const bool was_lost = drift_.lost();
+  if (was_lost) AddSearchCandidates(record, iteration.scan, candidates);
+  record.localisation = Localise(View(), iteration.scan, candidates, mounting_, options,
+                                 RefinePolicy::kBestValid, options_.max_refined_candidates);
   const RankedCandidate& kept = *record.Kept();
-  record.T_world_robot = kept.T_world_robot;
   record.verdict = kept.verdict;
   record.validated = record.localisation->validated();
+  record.T_world_robot =
+      record.validated || !options_.unconfirmed_takes_prediction ||
+              PredictionDisproved(*record.localisation, options_.prediction_disproved_cost_ratio)
+          ? kept.T_world_robot
+          : record.prediction;
+  if (record.validated) signature_.Add(kept.test);
+  drift_.Localised(record.validated);
+  record.lost = drift_.lost();
+  record.recovered = was_lost && record.validated;
   if (iteration.odometry) last_localised_odometry_ = *iteration.odometry;
+}
+
+// The wide search's best postures over the window the odometry's drift may have left since the
+// last confirmed scan (labels "search0", …).
+void Session::AddSearchCandidates(IterationRecord& record, const LaserScan& scan,
+                                  std::vector<Candidate>& candidates) const {
+  record.search_window = drift_.Window(mounting_.LaserPose(record.prediction));
+  record.search = WideSearch(View(), scan, *record.search_window, options_.recovery.search);
+  for (std::size_t i = 0; i < record.search->candidates.size(); ++i)
+    candidates.push_back({mounting_.RobotPose(record.search->candidates[i].T_world_laser),
+                          "search" + std::to_string(i)});
 }
 
 // A validated scan (or any localised one, with insert_unvalidated) extends the map once the

@@ -10,11 +10,13 @@
 #include <vector>
 
 #include "scanloc/likelihood/candidate_ranking.hpp"
+#include "scanloc/likelihood/laser_signature.hpp"
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/maps/point_map.hpp"
 #include "scanloc/session/iteration.hpp"
 #include "scanloc/session/localisation.hpp"
 #include "scanloc/session/map_extension.hpp"
+#include "scanloc/session/recovery.hpp"
 
 namespace scanloc {
 
@@ -43,7 +45,21 @@ struct SessionOptions {
   // 0.2 m kept.
   MapExtensionOptions extension;
   bool insert_unvalidated =
-      false;            // let non-validated scans extend the map (off: they are flagged)
+      false;  // let non-validated scans extend the map (off: they are flagged)
+  // A scan the rules do not confirm keeps the odometry prediction from the last posture rather
+  // than its unconfirmed refinement: the session is never worse than the odometry it cannot
+  // disprove.
+  bool unconfirmed_takes_prediction = false;
+  // ... unless the data disproves the prediction: its cost (3.11) exceeds this many times the kept
+  // refinement's (in a turn where the odometry heading slipped, the refinement is the better
+  // guess).
+  double prediction_disproved_cost_ratio = 1.5;
+  // The laser signature learned from the confirmed scans; with learned_max_expect_value, rule 2's
+  // E_max is its bound (validation.max_expect_value_m the prior), otherwise it is only recorded.
+  LaserSignatureOptions signature;
+  bool learned_max_expect_value = false;
+  // When the session counts itself lost, and the wide search it then adds.
+  RecoveryOptions recovery;
   Pose2D initial_pose;  // T_world_robot of the first iteration (§3.2.2: by convention)
   void Validate() const;
 };
@@ -61,6 +77,13 @@ struct IterationRecord {
   Pose2D T_world_robot;               // the posture kept for this scan
   Verdict verdict = Verdict::kValid;  // the rules on the kept posture
   bool validated = false;
+  double max_expect_value_m = 0.0;        // rule 2's E_max in force
+  double signature_expect_value_m = 0.0;  // the laser signature's bound (in force or not)
+  // The wide search, when the session was lost before this scan: its window and what it found.
+  std::optional<SearchWindow> search_window;
+  std::optional<WideSearchResult> search;
+  bool lost = false;           // lost after this scan (several unconfirmed in a row)
+  bool recovered = false;      // confirmed after being lost
   bool inserted = false;       // the scan extended the map
   std::size_t carved = 0;      // map points removed by this scan's free space
   std::size_t map_points = 0;  // after this iteration
@@ -98,12 +121,15 @@ class Session {
   const LineMap& line_map() const { return line_map_; }
   const LaserMounting& mounting() const { return mounting_; }
   std::size_t iterations() const { return count_; }
+  const LaserSignature& signature() const { return signature_; }
 
  private:
   MapView View() const;
   Pose2D Predict(const Iteration& iteration) const;
   bool ShouldLocalise(const Iteration& iteration) const;
   std::vector<Candidate> MakeCandidates(const Pose2D& prediction, const Iteration& iteration) const;
+  void AddSearchCandidates(IterationRecord& record, const LaserScan& scan,
+                           std::vector<Candidate>& candidates) const;
   void LocaliseInto(IterationRecord& record, const Iteration& iteration);
   void MaybeExtend(IterationRecord& record, const LaserScan& scan);
 
@@ -112,6 +138,8 @@ class Session {
   LaserMounting mounting_;
   LineMap line_map_;
   PointMap point_map_;
+  LaserSignature signature_;
+  DriftTracker drift_;
   std::size_t count_ = 0;
   Pose2D last_pose_;  // T_world_robot of the previous iteration
   std::optional<Pose2D> last_odometry_;
