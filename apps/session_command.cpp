@@ -31,6 +31,7 @@ struct Arguments {
   std::optional<double> laser_offset_m;
   std::size_t max_scans = 0;
   bool quiet = false;
+  bool strict = false;
   bool raw_odometry = false;
   bool force = false;
   RosBagOptions bag;
@@ -56,6 +57,9 @@ void Register(CLI::App& command, Arguments& a) {
                      "ROS bag: Odometry topic (default /odom; without it, /tf odom → base_link)");
   command.add_option("--max-scans", a.max_scans, "stop after this many scans (0: all)");
   command.add_flag("--quiet", a.quiet, "no progress line on stderr");
+  command.add_flag("--strict", a.strict,
+                   "exit non-zero when most localised scans were not confirmed (the run is "
+                   "written all the same)");
   command.add_flag("--raw-odometry", a.raw_odometry,
                    "use a CARMEN log's odometry as logged, without reversing the increments that "
                    "move forward while ODOM reports a negative velocity");
@@ -83,6 +87,9 @@ void PrintOutcome(const SessionRun& run, const nlohmann::json& summary, const Ru
             << summary["times_real_time"].get<double>() << "× real time), peak "
             << summary["peak_resident_mb"].get<double>() << " MB"
             << (c.interrupted ? ", interrupted" : "") << "\n";
+  if (c.searches > 0 || c.lost_stretches > 0)
+    std::cout << "lost " << c.lost_stretches << " times, " << c.searches << " wide searches, "
+              << c.recoveries << " recoveries" << (c.was_lost ? ", lost at the end" : "") << "\n";
   const std::size_t disordered = summary["timestamps_not_increasing"].get<std::size_t>();
   if (disordered > 0)
     std::cerr
@@ -123,6 +130,18 @@ void ReportNoReturn(const IterationSource& source, const CarmenOptions& carmen) 
     std::cerr << "log: readings at or beyond " << *recognised_m
               << " m are no-return (the log's saturation code; log.max_range_m is "
               << carmen.max_range_m << ", log.no_return_m sets it by hand)\n";
+}
+
+// A run whose localised scans were mostly not confirmed is said loudly (its trajectory is mostly
+// odometry or unconfirmed guesses); under --strict it is an error.
+void WarnIfMostlyUnconfirmed(const SessionCounts& c, bool strict) {
+  if (!MostlyUnconfirmed(c)) return;
+  const std::string message =
+      std::to_string(c.flagged) + " of " + std::to_string(c.localised) +
+      " localised scans were not confirmed by the Likelihood Test: the trajectory is not "
+      "trustworthy (see iterations.jsonl, scanloc report)";
+  if (strict) throw std::runtime_error(message);
+  std::cerr << "warning: " << message << "\n";
 }
 
 void Run(const Arguments& a) {
@@ -169,6 +188,7 @@ void Run(const Arguments& a) {
   folder.Finish(run.session ? run.session->point_map() : empty_map, summary,
                 grid ? &*grid : nullptr);
   PrintOutcome(run, summary, folder, grid ? &*grid : nullptr);
+  if (run.counts.failure.empty()) WarnIfMostlyUnconfirmed(run.counts, a.strict);
   if (!run.counts.failure.empty())
     throw std::runtime_error("the session stopped at scan " +
                              std::to_string(run.counts.iterations) + ": " + run.counts.failure +

@@ -612,8 +612,9 @@ TEST_F(ReportTest, ReplayGivesEachSelectedIterationItsScanAndTheMapBeforeIt) {
       [&](const IterationRow& row, const LaserScan& scan, const PointMap& before) {
         visited.push_back(row.index);
         // The map rebuilt by ExtendMap is the session's own, point for point in number.
-        if (row.index > 0)
+        if (row.index > 0) {
           EXPECT_EQ(before.live_size(), rows[row.index - 1].map_points) << row.index;
+        }
         map_sizes.push_back(before.size());
         EXPECT_EQ(scan.size(), 720u);
         for (std::size_t i = 0; i < before.size(); ++i)

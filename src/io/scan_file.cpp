@@ -45,6 +45,18 @@ void ReadBlock(std::istream& in, const std::string& path, std::size_t& line_numb
   }
 }
 
+// The value of a 'beams <count>' line: a count in [1, kMaxBeamsPerScan].
+long ParseBeamCount(const std::vector<std::string>& fields, const std::string& path,
+                    std::size_t number) {
+  if (fields.size() != 2) throw ParseError(path, number, "expected 'beams <count>'");
+  const long beams = ParseInteger(fields[1], path, number, "a beam count");
+  if (beams < 1 || beams > static_cast<long>(kMaxBeamsPerScan))
+    throw ParseError(path, number,
+                     "expected a beam count in [1, " + std::to_string(kMaxBeamsPerScan) +
+                         "] (kMaxBeamsPerScan)");
+  return beams;
+}
+
 }  // namespace
 
 LaserScan ReadScanFile(const std::string& path) {
@@ -75,12 +87,7 @@ LaserScan ReadScanFile(const std::string& path) {
       return ParseFiniteDouble(fields[1], path, number, what);
     };
     if (key == "beams") {
-      if (fields.size() != 2) throw ParseError(path, number, "expected 'beams <count>'");
-      beams = ParseInteger(fields[1], path, number, "a beam count");
-      if (*beams < 1 || *beams > static_cast<long>(kMaxBeamsPerScan))
-        throw ParseError(path, number,
-                         "expected a beam count in [1, " + std::to_string(kMaxBeamsPerScan) +
-                             "] (kMaxBeamsPerScan)");
+      beams = ParseBeamCount(fields, path, number);
     } else if (key == "angle_min_rad") {
       angle_min = value("first bearing in radians");
     } else if (key == "angle_increment_rad") {

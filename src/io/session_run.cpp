@@ -30,9 +30,11 @@ void PrintProgress(const SessionRun& run, const IterationSource& source, double 
   const double eta_s = progress > 0.0 ? elapsed_s * (1.0 - progress) / progress : 0.0;
   const SessionCounts& c = run.counts;
   std::fprintf(
-      stderr, "\rscans %zu, %.0f scans/s, %.0f× real time, map %zu points, %3.0f %%, ETA %.0f s   ",
-      c.iterations, static_cast<double>(c.iterations) / elapsed_s, c.span_s() / elapsed_s,
-      map_points, 100.0 * progress, eta_s);
+      stderr,
+      "\rscans %zu (%zu confirmed, %zu not, lost %zu×%s), %.0f× real time, map %zu points, "
+      "%3.0f %%, ETA %.0f s   ",
+      c.iterations, c.validated, c.flagged, c.lost_stretches, c.was_lost ? " now" : "",
+      c.span_s() / elapsed_s, map_points, 100.0 * progress, eta_s);
 }
 
 nlohmann::json Nullable(const std::optional<double>& value) {
@@ -51,6 +53,14 @@ void SessionCounts::Add(const IterationRecord& record) {
   validated += record.validated;
   flagged += !record.skipped && !record.validated;
   inserted += record.inserted;
+  searches += record.search.has_value();
+  recoveries += record.recovered;
+  lost_stretches += record.lost && !was_lost;
+  was_lost = record.lost;
+}
+
+bool MostlyUnconfirmed(const SessionCounts& counts) {
+  return counts.localised > 0 && 2 * counts.flagged > counts.localised;
 }
 
 SessionRun RunSession(IterationSource& source, const SessionFactory& make_session, RunFolder& run,
@@ -105,6 +115,10 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
       {"validated", c.validated},
       {"flagged_not_validated", c.flagged},
       {"inserted", c.inserted},
+      {"lost_stretches", c.lost_stretches},
+      {"wide_searches", c.searches},
+      {"recoveries", c.recoveries},
+      {"lost_at_end", c.was_lost},
       {"map_points", run.session ? run.session->point_map().live_size() : 0},
       {"wall_time_s", wall_s},
       {"data_span_s", c.span_s()},
@@ -120,6 +134,8 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
       {"skipped_messages", source.skipped_messages()},
       {"laser_offsets_ignored", source.ignored_laser_offsets()}};
   if (c.iterations == 0) summary["problem"] = "the sequence has no scan";
+  if (MostlyUnconfirmed(c))
+    summary["problem"] = "most localised scans were not confirmed by the Likelihood Test";
   if (!c.failure.empty()) summary["failed"] = c.failure;
   return summary;
 }

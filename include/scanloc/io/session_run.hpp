@@ -30,6 +30,9 @@ struct SessionRunOptions {
 // What a run did, counted as it went.
 struct SessionCounts {
   std::size_t iterations = 0, localised = 0, skipped = 0, validated = 0, flagged = 0, inserted = 0;
+  // Stretches of scans the session was lost in, wide searches run, confirmations that ended one.
+  std::size_t lost_stretches = 0, searches = 0, recoveries = 0;
+  bool was_lost = false;  // lost after the last scan
   double first_timestamp_s = 0.0, min_timestamp_s = 0.0, max_timestamp_s = 0.0;
   double wall_s = 0.0;
   bool interrupted = false;  // stopped by options.stop
@@ -38,6 +41,9 @@ struct SessionCounts {
   double span_s() const { return max_timestamp_s - min_timestamp_s; }
   void Add(const IterationRecord& record);
 };
+
+// True when more than half of the localised scans were not confirmed (flagged).
+bool MostlyUnconfirmed(const SessionCounts& counts);
 
 // Builds the session when the first scan has been read: a source's mounting is final then
 // (CARMEN's PARAM lines precede the first scan).
