@@ -3,13 +3,15 @@
 # $SCANLOC_DATASETS (default ../shared/datasets) and skip with a message when they are absent.
 #   scripts/test.sh              Release build in build/
 #   scripts/test.sh --sanitize   AddressSanitizer + UBSan build in build-sanitize/
+# Further arguments go to ctest, e.g. `scripts/test.sh --sanitize -L unit` for the unit tests only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 if [ "${1:-}" = "--sanitize" ]; then
+  shift
   export SCANLOC_BUILD_DIR=build-sanitize SCANLOC_BUILD_TYPE=RelWithDebInfo
   bash scripts/build.sh -DSCANLOC_SANITIZE=ON
 else
   bash scripts/build.sh
 fi
-ctest --test-dir "${SCANLOC_BUILD_DIR:-build}" --output-on-failure -j"$(nproc)"
+ctest --test-dir "${SCANLOC_BUILD_DIR:-build}" --output-on-failure -j"$(nproc)" "$@"
