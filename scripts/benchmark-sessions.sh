@@ -2,15 +2,19 @@
 # Runs the default session on each public log (Intel, ACES, Fr079), one after the other, scores
 # it on the relations (Kümmerle et al. 2009) and prints the table of docs/BENCHMARKS.md: absolute
 # translational and rotational error, throughput, peak memory and final map size.
-#   scripts/benchmark-sessions.sh [OUT_DIR]     (default: build/sessions; logs in $SCANLOC_DATASETS)
+#   scripts/benchmark-sessions.sh [OUT_DIR [SESSION_ARGS...]]  (default: build/sessions; logs in
+#   $SCANLOC_DATASETS); SESSION_ARGS (e.g. --set recovery.lost_after_unconfirmed=2) go to every
+#   session, to measure a configuration beside the defaults.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-build/sessions}
+shift || true
 source scripts/public-logs.sh benchmark-sessions
 mkdir -p "$out"
 for log in intel aces fr079; do
   echo "benchmark-sessions: $log" >&2
-  "$scanloc" session --log "$datasets/$log.clf.gz" --out "$out/$log" --force --quiet > "$out/$log.session.txt"
+  "$scanloc" session --log "$datasets/$log.clf.gz" --out "$out/$log" --force --quiet "$@" \
+    > "$out/$log.session.txt"
   "$scanloc" evaluate --trajectory "$out/$log/trajectory.tum" --relations "$datasets/$log.relations" \
     --json > "$out/$log.evaluation.json"
 done

@@ -3,10 +3,14 @@
 # with noisy synthetic odometry and with perfect odometry: the default session on every one, scored
 # on all relations and on the local ones (scans ≤ 15 s apart), beside the odometry alone (every
 # scan takes the prediction: the localisation gate never opens). Prints the table of issue 15.
-#   scripts/radish-sessions.sh [OUT_DIR]   (default: build/radish; logs in $SCANLOC_DATASETS/radish)
+#   scripts/radish-sessions.sh [OUT_DIR [SESSION_ARGS...]]   (default: build/radish; logs in
+#   $SCANLOC_DATASETS/radish). SESSION_ARGS go to every session but the odometry-only one, e.g.
+#   --set recovery.lost_after_unconfirmed=2, to measure a configuration on all five logs.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-build/radish}
+shift || true
+extra=("$@")
 source scripts/public-logs.sh radish-sessions
 radish="$datasets/radish"
 mkdir -p "$out"
@@ -16,7 +20,7 @@ for log in seattle orebro fhw edmonton acapulco; do
   for kind in odometry noisy exact; do
     echo "radish-sessions: $log $kind" >&2
     input="$radish/$log.${kind/odometry/noisy}.clf.gz"
-    args=()
+    args=("${extra[@]}")
     [ "$kind" = odometry ] && args=("${odometry_only[@]}")
     /usr/bin/time -f "%U %S" -o "$out/$log-$kind.cpu" \
       "$scanloc" session --log "$input" --out "$out/$log-$kind" --force --quiet "${args[@]}" \
