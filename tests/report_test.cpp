@@ -26,6 +26,7 @@
 #include "scanloc/report/png_image.hpp"
 #include "scanloc/report/run_records.hpp"
 #include "scanloc/report/scan_replay.hpp"
+#include "scanloc/report/series_figure.hpp"
 #include "scanloc/report/svg_canvas.hpp"
 #include "test_support.hpp"
 
@@ -303,6 +304,34 @@ TEST_F(ReportTest, RecordsWrittenForTheRunFolderReadBackFieldForField) {
   EXPECT_STREQ(read.rows[2].status(), "flagged");
   EXPECT_EQ(read.rows[2].reason, "rule 2: expected value too high");
   EXPECT_EQ(read.rows[2].problems.size(), 1u);
+}
+
+TEST_F(ReportTest, LostRecoveredAndTheLaserSignatureAreReadBackAndDrawn) {
+  IterationRecord lost = Localised(0, false), recovered = Localised(1, true);
+  lost.lost = true;
+  lost.signature_expect_value_m = lost.max_expect_value_m = 0.1;
+  recovered.recovered = true;
+  recovered.search_window = SearchWindow{recovered.prediction, 1.2, 0.5};
+  recovered.search = WideSearchResult{};
+  recovered.signature_expect_value_m = 0.14;
+  recovered.max_expect_value_m = 0.1;
+  const IterationRows read = ReadIterationRows(WriteRecords({lost, recovered}));
+  ASSERT_EQ(read.rows.size(), 2u);
+  EXPECT_TRUE(read.rows[0].lost);
+  EXPECT_FALSE(read.rows[0].searched);
+  EXPECT_TRUE(read.rows[1].recovered);
+  EXPECT_TRUE(read.rows[1].searched);
+  EXPECT_NEAR(read.rows[1].signature_expect_value_m.value(), 0.14, 1e-12);
+  EXPECT_NEAR(read.rows[1].max_expect_value_m.value(), 0.1, 1e-12);
+  const std::string svg = MomentSeriesFigure(read.rows, ValidationOptions{}, "m");
+  EXPECT_TRUE(Contains(svg, "laser signature&#39;s bound") ||
+              Contains(svg, "laser signature's bound"))
+      << svg;
+  EXPECT_TRUE(Contains(svg, "#7b4fb0"));
+  // Without the field (older run folders) there is no such line.
+  IterationRows old = read;
+  for (IterationRow& row : old.rows) row.signature_expect_value_m.reset();
+  EXPECT_FALSE(Contains(MomentSeriesFigure(old.rows, ValidationOptions{}, "m"), "#7b4fb0"));
 }
 
 TEST_F(ReportTest, ALineThatIsNotJsonIsReportedWithFileAndLine) {

@@ -202,7 +202,11 @@ std::string IterationsTable(const std::vector<IterationRow>& rows,
         << (drawn.count(row.index)
                 ? "<td class=\"n\"><a href=\"#iteration-" + index + "\">" + index + "</a></td>"
                 : Int(static_cast<long long>(row.index)))
-        << Num(row.timestamp_s, 3) << Td(row.status())
+        << Num(row.timestamp_s, 3)
+        << Td(std::string(row.status()) + (row.searched ? ", searched wide" : "") +
+              (row.recovered ? ", recovered"
+               : row.lost    ? ", lost"
+                             : ""))
         << Td(row.flagged() ? row.reason : std::string())
         << Td(row.candidates.empty()
                   ? std::string()

@@ -215,6 +215,11 @@ IterationRow RowFrom(const json& record) {
           CandidateFrom(candidates[i], "candidates[" + std::to_string(i) + "]"));
   }
   row.chosen = OptionalString(record, keys::kChosen, "");
+  row.max_expect_value_m = OptionalNumber(record, keys::kMaxExpectValueM, "");
+  row.signature_expect_value_m = OptionalNumber(record, keys::kSignatureExpectValueM, "");
+  row.lost = OptionalBool(record, keys::kLost, "");
+  row.recovered = OptionalBool(record, keys::kRecovered, "");
+  row.searched = record.contains(keys::kSearch);
   if (record.contains(keys::kProblems)) {
     for (const json& problem : RequiredArray(record, keys::kProblems, "", "an array of strings")) {
       if (!problem.is_string()) Fail(keys::kProblems, "an array of strings");

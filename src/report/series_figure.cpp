@@ -11,6 +11,8 @@
 namespace scanloc {
 namespace {
 
+constexpr char kSignatureColour[] = "#7b4fb0";
+
 namespace style = figure_style;
 
 constexpr double kWidthPx = 820.0, kPanelHeightPx = 150.0, kGapPx = 26.0;
@@ -47,10 +49,19 @@ std::string MomentSeriesFigure(const std::vector<IterationRow>& rows,
       samples.push_back({static_cast<double>(row.index), 100.0 * test->expect_value_m,
                          test->MatchRatio(), row.validated});
 
-  const std::vector<LegendItem> legend = {
+  std::vector<LegendItem> legend = {
       {LegendItem::Symbol::kDot, style::kValid, "validated"},
       {LegendItem::Symbol::kDot, style::kInvalid, "flagged (not validated)"},
       {LegendItem::Symbol::kDashedLine, style::kAxis, "threshold of rule 2 (E_max) / rule 1"}};
+  // The laser signature's bound over the session (recorded by sessions since issue 15).
+  std::vector<std::pair<double, double>> signature_cm;
+  for (const IterationRow& row : rows)
+    if (row.signature_expect_value_m)
+      signature_cm.emplace_back(static_cast<double>(row.index),
+                                100.0 * *row.signature_expect_value_m);
+  if (!signature_cm.empty())
+    legend.push_back({LegendItem::Symbol::kLine, kSignatureColour,
+                      "laser signature's bound (median + 3σ of confirmed EVs)"});
   const double plot_x0 = kLeftPx, plot_x1 = kWidthPx - kRightPx;
   const double height = kTopPx + 2 * kPanelHeightPx + kGapPx + kBottomPx + 20;
   SvgCanvas svg(kWidthPx, height, id, "moments over the session");
@@ -102,6 +113,12 @@ std::string MomentSeriesFigure(const std::vector<IterationRow>& rows,
     svg.Dots(flagged, 3.0, style::kInvalid);
     svg.Line({plot_x0, panel.y(panel.threshold)}, {plot_x1, panel.y(panel.threshold)}, style::kAxis,
              1.2, "5 4");
+    if (p == 0 && !signature_cm.empty()) {
+      std::vector<Eigen::Vector2d> line;
+      for (const auto& [index, cm] : signature_cm)
+        line.emplace_back(x(index), std::clamp(panel.y(cm), top + 1, bottom - 1));
+      svg.Polyline(line, kSignatureColour, 1.2);
+    }
   }
   const double axis_y = kTopPx + 2 * kPanelHeightPx + kGapPx;
   for (const double t : NiceTicks(0.0, last_index, 8))

@@ -65,6 +65,11 @@ struct IterationRow {
   std::vector<std::string> problems;
   std::optional<RefinementRow> refinement;
   std::vector<RefinedCandidateRow> refined_candidates;
+  // Rule 2's E_max in force and the laser signature's bound (absent in older run folders).
+  std::optional<double> max_expect_value_m, signature_expect_value_m;
+  bool lost = false;       // lost after this scan
+  bool recovered = false;  // confirmed after being lost
+  bool searched = false;   // the wide search added candidates
 
   // Localised but not validated: what the operator should look at.
   bool flagged() const { return !skipped && !first && !validated; }
