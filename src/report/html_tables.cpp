@@ -84,6 +84,10 @@ std::string SummaryTable(const json& summary, const std::vector<IterationRow>& r
                                           {"scans_per_s", "scans per second"},
                                           {"times_real_time", "× real time"},
                                           {"peak_resident_mb", "peak memory [MB]"},
+                                          {"lost_stretches", "times lost"},
+                                          {"wide_searches", "wide searches"},
+                                          {"recoveries", "recoveries"},
+                                          {"lost_at_end", "lost at the end"},
                                           {"problem", "problem"}};
   for (const auto& [key, name] : kKnown)
     if (const auto it = summary.find(key); it != summary.end()) line(name, SummaryValue(*it));

@@ -60,10 +60,10 @@ std::string MomentSeriesFigure(const std::vector<IterationRow>& rows,
       signature_cm.emplace_back(static_cast<double>(row.index),
                                 100.0 * *row.signature_expect_value_m);
   if (!signature_cm.empty())
-    legend.push_back({LegendItem::Symbol::kLine, kSignatureColour,
-                      "laser signature's bound (median + 3σ of confirmed EVs)"});
+    legend.push_back({LegendItem::Symbol::kLine, kSignatureColour, "laser signature's E_max"});
   const double plot_x0 = kLeftPx, plot_x1 = kWidthPx - kRightPx;
-  const double height = kTopPx + 2 * kPanelHeightPx + kGapPx + kBottomPx + 20;
+  const double legend_px = LegendHeight(legend, kWidthPx - kRightPx - kLeftPx);
+  const double height = kTopPx + 2 * kPanelHeightPx + kGapPx + kBottomPx + 8 + legend_px;
   SvgCanvas svg(kWidthPx, height, id, "moments over the session");
   if (samples.empty()) {
     svg.Rect(plot_x0, kTopPx, plot_x1 - plot_x0, 2 * kPanelHeightPx + kGapPx, "none", style::kFrame,
@@ -76,8 +76,9 @@ std::string MomentSeriesFigure(const std::vector<IterationRow>& rows,
   std::vector<double> evs;
   for (const Sample& s : samples) evs.push_back(s.ev_cm);
   std::sort(evs.begin(), evs.end());
-  const double ev_high = std::max(
+  double ev_high = std::max(
       1.2 * e_max_cm, std::min(kEvSpanOfMax * e_max_cm, evs[(evs.size() - 1) * 98 / 100] * 1.05));
+  for (const auto& sample : signature_cm) ev_high = std::max(ev_high, 1.05 * sample.second);
   const double last_index = rows.empty() ? 1.0 : std::max<double>(1.0, rows.back().index);
   const LinearAxis x{0.0, last_index, plot_x0 + 4, plot_x1 - 4};
 
@@ -124,7 +125,7 @@ std::string MomentSeriesFigure(const std::vector<IterationRow>& rows,
   for (const double t : NiceTicks(0.0, last_index, 8))
     svg.Text({x(t), axis_y + 14}, FormatFixed(t, 0), {10.0, "middle", style::kAxis});
   svg.Text({0.5 * (plot_x0 + plot_x1), axis_y + 28}, "iteration", {10.5, "middle", style::kAxis});
-  DrawLegend(svg, legend, plot_x0, height - 12, plot_x1 - plot_x0);
+  DrawLegend(svg, legend, plot_x0, height - legend_px, plot_x1 - plot_x0);
   return svg.Finish();
 }
 
