@@ -71,6 +71,12 @@ TEST_F(ReliabilityCliTest, InitialPoseBeyondAMillionMetresIsRefused) {
 }
 
 TEST_F(ReliabilityCliTest, PointMapWithAHugeHeaderIsRefusedInA2GBAddressSpace) {
+#if defined(__SANITIZE_ADDRESS__)
+  // AddressSanitizer maps terabytes of shadow memory at start, so no program of its build runs
+  // under a 2 GB address-space limit; the Release build and scripts/reliability/huge-pcd.sh check
+  // the bound.
+  GTEST_SKIP() << "not under AddressSanitizer: its shadow memory exceeds the 2 GB limit itself";
+#endif
   const std::string pcd = Write("huge.pcd",
                                 "VERSION 0.7\nFIELDS x y z spacing\nSIZE 4 4 4 4\nTYPE F F F F\n"
                                 "COUNT 1 1 1 1\nWIDTH 1050000000\nHEIGHT 1\nPOINTS 1050000000\n"
