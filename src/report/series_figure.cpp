@@ -37,6 +37,30 @@ const LikelihoodTestResult* FinalTest(const IterationRow& row) {
   return nullptr;
 }
 
+namespace {
+
+// The laser signature's bound over the session, (iteration, cm), where the records carry it
+// (sessions since issue 15).
+std::vector<std::pair<double, double>> SignatureSeriesCm(const std::vector<IterationRow>& rows) {
+  std::vector<std::pair<double, double>> series;
+  for (const IterationRow& row : rows)
+    if (row.signature_expect_value_m)
+      series.emplace_back(static_cast<double>(row.index), 100.0 * *row.signature_expect_value_m);
+  return series;
+}
+
+std::vector<LegendItem> MomentLegend(bool with_signature) {
+  std::vector<LegendItem> legend = {
+      {LegendItem::Symbol::kDot, style::kValid, "validated"},
+      {LegendItem::Symbol::kDot, style::kInvalid, "flagged (not validated)"},
+      {LegendItem::Symbol::kDashedLine, style::kAxis, "threshold of rule 2 (E_max) / rule 1"}};
+  if (with_signature)
+    legend.push_back({LegendItem::Symbol::kLine, kSignatureColour, "laser signature's E_max"});
+  return legend;
+}
+
+}  // namespace
+
 std::string MomentSeriesFigure(const std::vector<IterationRow>& rows,
                                const ValidationOptions& validation, const std::string& id) {
   struct Sample {
@@ -49,18 +73,8 @@ std::string MomentSeriesFigure(const std::vector<IterationRow>& rows,
       samples.push_back({static_cast<double>(row.index), 100.0 * test->expect_value_m,
                          test->MatchRatio(), row.validated});
 
-  std::vector<LegendItem> legend = {
-      {LegendItem::Symbol::kDot, style::kValid, "validated"},
-      {LegendItem::Symbol::kDot, style::kInvalid, "flagged (not validated)"},
-      {LegendItem::Symbol::kDashedLine, style::kAxis, "threshold of rule 2 (E_max) / rule 1"}};
-  // The laser signature's bound over the session (recorded by sessions since issue 15).
-  std::vector<std::pair<double, double>> signature_cm;
-  for (const IterationRow& row : rows)
-    if (row.signature_expect_value_m)
-      signature_cm.emplace_back(static_cast<double>(row.index),
-                                100.0 * *row.signature_expect_value_m);
-  if (!signature_cm.empty())
-    legend.push_back({LegendItem::Symbol::kLine, kSignatureColour, "laser signature's E_max"});
+  const std::vector<std::pair<double, double>> signature_cm = SignatureSeriesCm(rows);
+  const std::vector<LegendItem> legend = MomentLegend(!signature_cm.empty());
   const double plot_x0 = kLeftPx, plot_x1 = kWidthPx - kRightPx;
   const double legend_px = LegendHeight(legend, kWidthPx - kRightPx - kLeftPx);
   const double height = kTopPx + 2 * kPanelHeightPx + kGapPx + kBottomPx + 8 + legend_px;
