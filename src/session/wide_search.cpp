@@ -50,6 +50,61 @@ std::vector<Eigen::Vector2d> MapPoints(const MapView& map, const Eigen::Vector2d
   return points;
 }
 
+// The field over the box of `points` (the cells a splat reaches), within centre ± reach, its
+// corner a whole number of cells from centre − reach (so that a posture's cells do not depend on
+// the map's extent), and widened below by a top-level block: a block starting left of or below
+// the points then still holds the maximum of the cells it covers (the bound stays exact). Cells
+// beyond hold 0, as LikelihoodField::At says outside the grid.
+LikelihoodField FieldOver(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& centre,
+                          double reach, const LikelihoodFieldOptions& options) {
+  const double res = options.resolution_m;
+  const Eigen::Vector2d corner = centre - Eigen::Vector2d(reach, reach);
+  const Eigen::Vector2d far = centre + Eigen::Vector2d(reach, reach);
+  Eigen::Vector2d low = far, high = corner;
+  for (const Eigen::Vector2d& p : points) {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  const double margin = 3.0 * options.sigma_m + 2.0 * res;
+  const double pad = margin + res * ((1 << (options.levels - 1)) - 1);
+  Eigen::Vector2d min_world = (low.array() - pad).max(corner.array()).matrix();
+  min_world = corner + res * ((min_world - corner) / res).array().floor().matrix();
+  const Eigen::Vector2d max_world = (high.array() + margin).min(far.array()).matrix();
+  return LikelihoodField(points, min_world, max_world.cwiseMax(min_world), options);
+}
+
+// The headings searched: offsets first…last times step_rad from the window's heading. The step
+// moves the farthest endpoint by at most one cell (Hess et al. 2016); a window of ±π or more is
+// the whole circle, each heading once.
+struct Headings {
+  double step_rad = 0.0;
+  int first = 0, last = 0;
+  bool full_circle = false;
+  // Heading steps between indices a and b (around the circle when it is whole).
+  int Apart(int a, int b) const {
+    const int d = std::abs(a - b), count = last - first + 1;
+    return full_circle ? std::min(d, count - d) : d;
+  }
+};
+Headings SearchHeadings(double half_yaw_rad, double resolution_m, double max_range_m,
+                        const WideSearchOptions& options) {
+  Headings h;
+  h.step_rad = std::max(options.min_heading_step_rad,
+                        std::acos(std::max(-1.0, 1.0 - resolution_m * resolution_m /
+                                                           (2.0 * max_range_m * max_range_m))));
+  if (half_yaw_rad + 0.5 * h.step_rad >= M_PI) {
+    const int count = static_cast<int>(std::ceil(2.0 * M_PI / h.step_rad));
+    h.step_rad = 2.0 * M_PI / count;
+    h.first = -(count / 2);
+    h.last = h.first + count - 1;
+    h.full_circle = true;
+    return h;
+  }
+  h.last = static_cast<int>(std::ceil(half_yaw_rad / h.step_rad));
+  h.first = -h.last;
+  return h;
+}
+
 // Exact branch and bound over translations, every heading at the top: keeps the best leaves that
 // are distinct (no two `Near`), so that a second peak is not crowded out by the first one's slopes.
 class BranchAndBound {
@@ -135,6 +190,25 @@ class BranchAndBound {
 
 }  // namespace
 
+std::optional<SearchWindow> WholeMapWindow(const MapView& map) {
+  Eigen::Vector2d low(HUGE_VAL, HUGE_VAL), high(-HUGE_VAL, -HUGE_VAL);
+  auto add = [&](const Eigen::Vector2d& p) {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  };
+  if (map.points != nullptr)
+    for (std::size_t i = 0; i < map.points->size(); ++i)
+      if (map.points->alive(i)) add(map.points->point(i));
+  if (map.lines != nullptr)
+    for (const auto& segment : map.lines->segments) {
+      add(segment.a);
+      add(segment.b);
+    }
+  if (!(low.array() <= high.array()).all()) return std::nullopt;
+  const Eigen::Vector2d centre = 0.5 * (low + high);
+  return SearchWindow{Pose2D(centre.x(), centre.y(), 0.0), 0.5 * (high - low).maxCoeff(), M_PI};
+}
+
 void WideSearchOptions::Validate() const {
   field.Validate();
   auto require = [](bool ok, const char* what) {
@@ -167,16 +241,12 @@ WideSearchResult WideSearch(const MapView& map, const LaserScan& scan, const Sea
       endpoints.empty() || map.empty() ? std::vector<Eigen::Vector2d>{}
                                        : MapPoints(map, centre, reach * std::sqrt(2.0), 0.5 * res);
   if (points.empty()) return result;
-  const LikelihoodField field(points, centre - Eigen::Vector2d(reach, reach),
-                              centre + Eigen::Vector2d(reach, reach), options.field);
-  // Headings: a step that moves the farthest endpoint by at most one cell (Hess et al. 2016).
-  const double step_rad =
-      std::max(options.min_heading_step_rad,
-               std::acos(std::max(-1.0, 1.0 - res * res / (2.0 * max_range_m * max_range_m))));
-  const int half_headings = static_cast<int>(std::ceil(window.half_yaw_rad / step_rad));
+  const LikelihoodField field = FieldOver(points, centre, reach, options.field);
+  const Headings headings = SearchHeadings(window.half_yaw_rad, res, max_range_m, options);
+  const double step_rad = headings.step_rad;
   std::vector<std::vector<Eigen::Vector2i>> cells;
   std::vector<double> yaws;
-  for (int k = -half_headings; k <= half_headings; ++k) {
+  for (int k = headings.first; k <= headings.last; ++k) {
     Pose2D pose = window.centre;
     pose.yaw_rad = NormalizeAngle(pose.yaw_rad + k * step_rad);
     std::vector<Eigen::Vector2i> heading_cells;
@@ -191,7 +261,7 @@ WideSearchResult WideSearch(const MapView& map, const LaserScan& scan, const Sea
   const double separation_headings = options.min_separation_rad / step_rad;
   auto near = [&](const Node& a, const Node& b) {
     return std::hypot(a.ox - b.ox, a.oy - b.oy) < separation_cells &&
-           std::abs(a.heading - b.heading) < separation_headings;
+           headings.Apart(a.heading, b.heading) < separation_headings;
   };
   BranchAndBound search(field, std::move(cells), half_cells,
                         static_cast<std::size_t>(options.max_candidates), near);

@@ -6,6 +6,7 @@
 // how a lost session searches around its odometry, how a loop is closed against old nodes, and,
 // with the whole map as its window, how a robot finds itself on a saved map.
 
+#include <optional>
 #include <vector>
 
 #include "scanloc/geometry/laser_scan.hpp"
@@ -16,7 +17,7 @@
 namespace scanloc {
 
 // The postures searched: the laser within ±half_width_m of centre's position in x and y, and
-// within ±half_yaw_rad of its heading.
+// within ±half_yaw_rad of its heading (±π: every heading).
 struct SearchWindow {
   Pose2D centre;  // T_world_laser
   double half_width_m = 1.0;
@@ -54,5 +55,9 @@ struct WideSearchResult {
 // gives no candidate.
 WideSearchResult WideSearch(const MapView& map, const LaserScan& scan, const SearchWindow& window,
                             const WideSearchOptions& options = {});
+
+// The window over a whole map, every heading: the laser anywhere in the square about the box of
+// its points and segments (a global search). Nullopt for an empty map.
+std::optional<SearchWindow> WholeMapWindow(const MapView& map);
 
 }  // namespace scanloc
