@@ -34,6 +34,7 @@ void RegisterTestCommand(CLI::App& app);
 void RegisterSimulateScanCommand(CLI::App& app);
 void RegisterRefineCommand(CLI::App& app);
 void RegisterSessionCommand(CLI::App& app);
+void RegisterLocaliseCommand(CLI::App& app);
 void RegisterEvaluateCommand(CLI::App& app);
 void RegisterReportCommand(CLI::App& app);
 void RegisterSimulateCommand(CLI::App& app);

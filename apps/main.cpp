@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   scanloc::app::RegisterSimulateScanCommand(app);
   scanloc::app::RegisterRefineCommand(app);
   scanloc::app::RegisterSessionCommand(app);
+  scanloc::app::RegisterLocaliseCommand(app);
   scanloc::app::RegisterEvaluateCommand(app);
   scanloc::app::RegisterReportCommand(app);
   scanloc::app::RegisterSimulateCommand(app);

@@ -1,207 +1,39 @@
 // scanloc session: localise every scan of a recorded sequence against the map built so far, extend
 // the map, and write the run folder.
 
-#include <atomic>
-#include <csignal>
-#include <filesystem>
-#include <iostream>
-#include <nlohmann/json.hpp>
-#include <stdexcept>
+#include <memory>
 
 #include "commands.hpp"
-#include "common_options.hpp"
-#include "scanloc/common/output_folder.hpp"
-#include "scanloc/io/run_folder.hpp"
-#include "scanloc/io/sequence_sources.hpp"
-#include "scanloc/io/session_run.hpp"
-#include "scanloc/maps/point_map_io.hpp"
+#include "sequence_command.hpp"
+#include "scanloc/session/session.hpp"
 
 namespace scanloc::app {
 namespace {
 
-std::atomic<bool> g_interrupted{false};
-extern "C" void OnInterrupt(int) {
-  g_interrupted = true;
-}
-
-struct Arguments {
-  std::string log_path, line_map_path, point_map_path, out_dir;
-  ConfigArguments config;
-  std::vector<double> initial_pose;
-  std::optional<double> laser_offset_m;
-  std::size_t max_scans = 0;
-  bool quiet = false;
-  bool strict = false;
-  bool raw_odometry = false;
-  bool force = false;
-  RosBagOptions bag;
-};
-
-void Register(CLI::App& command, Arguments& a) {
-  command
-      .add_option("--log", a.log_path, "CARMEN log, ROS 1 bag or native sequence (told by content)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command.add_option("--line-map", a.line_map_path, "off-line line map")->check(CLI::ExistingFile);
-  command.add_option("--point-map", a.point_map_path, "saved point map (PCD) to start from")
-      ->check(CLI::ExistingFile);
-  command.add_option("--out", a.out_dir, "run folder to write (new or empty)")->required();
-  command.add_flag("--force", a.force, "write into an --out folder that is not empty");
-  command.add_option("--initial-pose", a.initial_pose, "first posture x y theta (default 0 0 0)")
-      ->expected(3)
-      ->check(PlausibleCoordinate());
-  command.add_option("--laser-offset", a.laser_offset_m,
-                     "laser distance ahead of the robot base (m); overrides the log's PARAM");
-  command.add_option("--scan-topic", a.bag.scan_topic, "ROS bag: LaserScan topic (default /scan)");
-  command.add_option("--odom-topic", a.bag.odometry_topic,
-                     "ROS bag: Odometry topic (default /odom; without it, /tf odom → base_link)");
-  command.add_option("--max-scans", a.max_scans, "stop after this many scans (0: all)");
-  command.add_flag("--quiet", a.quiet, "no progress line on stderr");
-  command.add_flag("--strict", a.strict,
-                   "exit non-zero when most localised scans were not confirmed (the run is "
-                   "written all the same)");
-  command.add_flag("--raw-odometry", a.raw_odometry,
-                   "use a CARMEN log's odometry as logged, without reversing the increments that "
-                   "move forward while ODOM reports a negative velocity");
-  a.config.Register(command);
-}
-
-// The inputs as absolute paths, so that `scanloc report` finds them from anywhere.
-nlohmann::json Inputs(const Arguments& a) {
-  auto absolute = [](const std::string& path) {
-    return path.empty()
-               ? nlohmann::json(nullptr)
-               : nlohmann::json(std::filesystem::absolute(path).lexically_normal().string());
-  };
-  return {{"log", absolute(a.log_path)},
-          {"line_map", absolute(a.line_map_path)},
-          {"point_map", absolute(a.point_map_path)}};
-}
-
-void PrintOutcome(const SessionRun& run, const nlohmann::json& summary, const RunFolder& folder,
-                  const OccupancyGrid* grid) {
-  const SessionCounts& c = run.counts;
-  std::cout << "session: " << c.iterations << " scans (" << c.localised << " localised, "
-            << c.validated << " validated, " << c.flagged << " flagged), map "
-            << summary["map_points"] << " points, " << c.wall_s << " s ("
-            << summary["times_real_time"].get<double>() << "× real time), peak "
-            << summary["peak_resident_mb"].get<double>() << " MB"
-            << (c.interrupted ? ", interrupted" : "") << "\n";
-  if (c.searches > 0 || c.lost_stretches > 0)
-    std::cout << "lost " << c.lost_stretches << " times, " << c.searches << " wide searches, "
-              << c.recoveries << " recoveries" << (c.was_lost ? ", lost at the end" : "") << "\n";
-  const std::size_t disordered = summary["timestamps_not_increasing"].get<std::size_t>();
-  if (disordered > 0)
-    std::cerr
-        << "warning: " << disordered
-        << " scans have a timestamp that is not after the previous scan's (kept in log order)\n";
-  const std::size_t zero = summary["timestamps_zero"].get<std::size_t>();
-  if (zero > 0)
-    std::cerr << "warning: " << zero
-              << " scans have a zero timestamp (the trajectory keeps them in log order; matching "
-                 "it by time is ambiguous)\n";
-  const std::size_t late_offsets = summary["laser_offsets_ignored"].get<std::size_t>();
-  if (late_offsets > 0)
-    std::cerr << "warning: " << late_offsets
-              << " PARAM robot_frontlaser_offset lines after the first scan were ignored (the "
-                 "mounting stays the one in force at the first scan)\n";
-  if (!summary["skipped_messages"].empty()) {
-    std::cout << "skipped messages:";
-    for (const auto& [type, count] : summary["skipped_messages"].items())
-      std::cout << " " << type << " " << count.get<std::size_t>();
-    std::cout << "\n";
-  }
-  const std::size_t reversed = summary["odometry_reversed_increments"].get<std::size_t>();
-  if (reversed > 0)
-    std::cout << "odometry: " << reversed
-              << " increments reversed (the log's pose moved forward while ODOM reported a "
-                 "negative velocity; --raw-odometry keeps them)\n";
-  if (grid)
-    std::cout << "occupancy grid: " << grid->width << " × " << grid->height << " cells of "
-              << grid->resolution_m << " m from " << run.grid->scans() << " scans\n";
-  std::cout << "wrote " << folder.directory() << "/{iterations.jsonl,trajectory.tum,map.pcd,"
-            << (grid ? "map.pgm,map.yaml," : "") << "summary.json}\n";
-}
-
-// One line when the log's own saturation code lowers the range limit below log.max_range_m.
-void ReportNoReturn(const IterationSource& source, const CarmenOptions& carmen) {
-  const std::optional<double> recognised_m = source.recognised_no_return_m();
-  if (recognised_m && *recognised_m < carmen.max_range_m)
-    std::cerr << "log: readings at or beyond " << *recognised_m
-              << " m are no-return (the log's saturation code; log.max_range_m is "
-              << carmen.max_range_m << ", log.no_return_m sets it by hand)\n";
-}
-
-// A run whose localised scans were mostly not confirmed is said loudly (its trajectory is mostly
-// odometry or unconfirmed guesses); under --strict it is an error.
-void WarnIfMostlyUnconfirmed(const SessionCounts& c, bool strict) {
-  if (!MostlyUnconfirmed(c)) return;
-  const std::string message =
-      std::to_string(c.flagged) + " of " + std::to_string(c.localised) +
-      " localised scans were not confirmed by the Likelihood Test: the trajectory is not "
-      "trustworthy (see iterations.jsonl, scanloc report)";
-  if (strict) throw std::runtime_error(message);
-  std::cerr << "warning: " << message << "\n";
-}
-
-void Run(const Arguments& a) {
-  RefuseNonEmptyFolder(a.out_dir, a.force);  // before anything is read (RunFolder checks again)
+void Run(const SequenceArguments& a) {
   Config config = a.config.Build();
   if (!a.initial_pose.empty()) {
     config.session.initial_pose = {a.initial_pose[0], a.initial_pose[1], a.initial_pose[2]};
     config.Validate();  // the ranges of the config, e.g. |yaw| ≤ 2π
   }
-  CarmenOptions carmen = config.log;  // --laser-offset and --raw-odometry override it
-  if (a.laser_offset_m) carmen.laser_offset_m = a.laser_offset_m;
-  if (a.raw_odometry) carmen.repair_reversed_odometry = false;
-  RosBagOptions bag = a.bag;
-  if (a.laser_offset_m) bag.mounting = Pose2D(*a.laser_offset_m, 0.0, 0.0);
-  auto source = OpenIterationSource(a.log_path, carmen, bag);
-  ReportNoReturn(*source, carmen);
-  LineMap lines = a.line_map_path.empty() ? LineMap{} : ReadLineMap(a.line_map_path);
-  PointMap points = a.point_map_path.empty() ? PointMap(config.point_map)
-                                             : LoadPointMapPcd(a.point_map_path, config.point_map);
-  RunFolder folder(a.out_dir, a.force);
-  std::signal(SIGINT, OnInterrupt);
-  std::signal(SIGTERM, OnInterrupt);
-  const SessionFactory make_session = [&](const IterationSource& from) {
-    config.mounting =
-        ChooseMounting(from.mounting(), config.mounting, carmen.laser_offset_m.has_value());
+  RunSequence(a, config, [](const Config& c, LineMap lines, PointMap points) {
     return std::make_unique<Session>(
-        SessionConfig{config.session, {config.scoring, config.validation, config.refiner}},
-        config.mounting, std::move(lines), std::move(points));
-  };
-  SessionRunOptions run_options;
-  run_options.max_scans = a.max_scans;
-  run_options.progress = !a.quiet;
-  run_options.stop = &g_interrupted;
-  if (config.write_occupancy_grid) run_options.occupancy_grid = config.occupancy_grid;
-  const SessionRun run = RunSession(*source, make_session, folder, run_options);
-  nlohmann::json summary = SummaryJson(run, *source);
-  summary["log"] = a.log_path;
-  summary["config"] = ToJson(config);
-  summary["odometry_reversal_repair"] = carmen.repair_reversed_odometry;
-  summary["inputs"] = Inputs(a);
-  const PointMap empty_map(config.point_map);
-  std::optional<OccupancyGrid> grid;
-  if (run.grid && run.grid->scans() > 0) grid = run.grid->Build();
-  folder.Finish(run.session ? run.session->point_map() : empty_map, summary,
-                grid ? &*grid : nullptr);
-  PrintOutcome(run, summary, folder, grid ? &*grid : nullptr);
-  if (run.counts.failure.empty()) WarnIfMostlyUnconfirmed(run.counts, a.strict);
-  if (!run.counts.failure.empty())
-    throw std::runtime_error("the session stopped at scan " +
-                             std::to_string(run.counts.iterations) + ": " + run.counts.failure +
-                             " (what it did before is written in " + folder.directory() + ")");
+        SessionConfig{c.session, {c.scoring, c.validation, c.refiner}}, c.mounting,
+        std::move(lines), std::move(points));
+  });
 }
 
 }  // namespace
 
 void RegisterSessionCommand(CLI::App& app) {
-  auto arguments = std::make_shared<Arguments>();
+  auto arguments = std::make_shared<SequenceArguments>();
   CLI::App* command = app.add_subcommand(
       "session", "localise a whole recorded sequence while growing the map from its scans");
-  Register(*command, *arguments);
+  arguments->Register(*command, "saved point map (PCD) to start from");
+  command->add_option("--initial-pose", arguments->initial_pose,
+                      "first posture x y theta (default 0 0 0)")
+      ->expected(3)
+      ->check(PlausibleCoordinate());
   command->final_callback([arguments] { Run(*arguments); });
 }
 

@@ -296,6 +296,7 @@ void Config::Validate() const {
   refiner.error_descent.Validate();
   refiner.icp.Validate();
   session.Validate();
+  localise.Validate();
   log.Validate();
   occupancy_grid.Validate();
 }

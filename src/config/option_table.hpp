@@ -224,6 +224,41 @@ void VisitRecovery(C& c, V& v) {
     "wide search: headings at least this far apart, rad");
 }
 
+template <class C, class V>
+void VisitLocalise(C& c, V& v) {
+  auto& l = c.localise;
+  v("localise.confirm_after", l.confirm_after, Bounds{1, 1e6},
+    "scans in a row the rules must validate the only hypothesis left before it is confirmed");
+  v("localise.research_distance_m", l.research_distance_m, Bounds{0, 1e3},
+    "until a posture is confirmed, the map is searched again after the odometry moved this far, "
+    "m ...");
+  v("localise.research_turn_rad", l.research_turn_rad, Bounds{0, 2 * M_PI}, "... or turned this, rad");
+  v("localise.drop_after_unconfirmed", l.drop_after_unconfirmed, Bounds{1, 1e6},
+    "a hypothesis not yet confirmed is dropped after this many unconfirmed scans in a row");
+  v("localise.lost_after_unconfirmed", l.lost_after_unconfirmed, Bounds{1, 1e6},
+    "a confirmed posture is lost (the global search starts again) after this many");
+  v("localise.max_hypotheses", l.max_hypotheses, Bounds{1, 1000}, "hypotheses held at most");
+  v("localise.same_posture_m", l.same_posture_m, Bounds{0, 1e3},
+    "hypotheses closer than this and same_posture_rad are one, m");
+  v("localise.same_posture_rad", l.same_posture_rad, kAngle, "... and this, rad");
+  auto& w = l.search;
+  v("localise.search_resolution_m", w.field.resolution_m, Bounds{1e-3, 10},
+    "global search: the likelihood field's cell, m");
+  v("localise.search_sigma_m", w.field.sigma_m, Bounds{1e-3, 10},
+    "global search: the field's σ around each map point, m");
+  v("localise.search_levels", w.field.levels, Bounds{1, 16},
+    "global search: branch-and-bound levels (top blocks of 2^(levels−1) cells)");
+  v("localise.search_candidates", w.max_candidates, Bounds{1, 1000},
+    "global search: distinct postures refined and tested by the rules");
+  v("localise.search_max_beams", w.max_beams, Bounds{1, 1e5},
+    "global search: valid beams scored, evenly subsampled");
+  v("localise.search_min_heading_step_rad", w.min_heading_step_rad, Bounds{1e-4, 0.5},
+    "global search: headings at least this far apart, rad");
+  v("localise.search_min_separation_m", w.min_separation_m, Bounds{0, 1e3},
+    "global search: distinct postures are this far apart at least, m ...");
+  v("localise.search_min_separation_rad", w.min_separation_rad, kAngle, "... or this, rad");
+}
+
 // Every option, in the order of the help text.
 template <class C, class V>
 void VisitOptions(C& c, V& v) {
@@ -232,6 +267,7 @@ void VisitOptions(C& c, V& v) {
   VisitRefinement(c, v);
   VisitSession(c, v);
   VisitRecovery(c, v);
+  VisitLocalise(c, v);
   VisitLog(c, v);
   VisitOccupancyGrid(c, v);
 }

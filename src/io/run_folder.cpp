@@ -31,6 +31,19 @@ nlohmann::json RefinedCandidatesJson(const LocalisationResult& localisation) {
   return refined;
 }
 
+// The hypotheses a localisation holds, best first.
+nlohmann::json HypothesesJson(const std::vector<Hypothesis>& hypotheses) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const Hypothesis& h : hypotheses)
+    out.push_back({{keys::kTWorldRobot, ToJson(h.T_world_robot)},
+                   {keys::kConfirmedInRow, h.confirmed_in_row},
+                   {keys::kUnconfirmedInRow, h.unconfirmed_in_row},
+                   {keys::kConfirmations, h.confirmations},
+                   {keys::kCost, h.cost},
+                   {keys::kValidated, h.validated}});
+  return out;
+}
+
 }  // namespace
 
 nlohmann::json ToJson(const IterationRecord& r) {
@@ -56,6 +69,11 @@ nlohmann::json ToJson(const IterationRecord& r) {
                           {keys::kTotal, 1e3 * r.total_s}}}};
   if (r.lost) out[keys::kLost] = true;
   if (r.recovered) out[keys::kRecovered] = true;
+  if (!r.state.empty()) {
+    out[keys::kState] = r.state;
+    out[keys::kPosed] = r.posed;
+    out[keys::kHypotheses] = HypothesesJson(r.hypotheses);
+  }
   if (r.search_window && r.search) {
     const SearchWindow& w = *r.search_window;
     out[keys::kSearch] = {{keys::kCentre, ToJson(w.centre)},
@@ -98,7 +116,7 @@ void RunFolder::Record(const IterationRecord& record) {
   records_ << ToJson(record).dump() << '\n';
   records_.flush();  // a line is complete on disk before the next iteration starts
   if (!records_) throw std::runtime_error("error while writing " + Path("iterations.jsonl"));
-  trajectory_.push_back({record.timestamp_s, record.T_world_robot});
+  if (record.posed) trajectory_.push_back({record.timestamp_s, record.T_world_robot});
 }
 
 void RunFolder::Finish(const PointMap& map, nlohmann::json summary, const OccupancyGrid* grid) {

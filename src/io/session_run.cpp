@@ -41,6 +41,20 @@ nlohmann::json Nullable(const std::optional<double>& value) {
   return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
 }
 
+// What a localisation on a saved map adds: when it first confirmed its posture, how long the
+// scans were ambiguous, and said loudly when it never confirmed one.
+void AddLocalisationSummary(const SessionCounts& c, nlohmann::json& summary) {
+  summary["first_confirmed_scan"] =
+      c.first_confirmed ? nlohmann::json(*c.first_confirmed) : nlohmann::json(nullptr);
+  summary["seconds_to_confirm"] =
+      c.first_confirmed ? nlohmann::json(c.first_confirmed_timestamp_s - c.first_timestamp_s)
+                        : nlohmann::json(nullptr);
+  summary["ambiguous_scans"] = c.ambiguous;
+  summary["max_hypotheses"] = c.max_hypotheses;
+  summary["scans_without_posture"] = c.unposed;
+  if (!c.first_confirmed) summary["problem"] = "no posture was ever confirmed on the map";
+}
+
 }  // namespace
 
 void SessionCounts::Add(const IterationRecord& record) {
@@ -57,6 +71,14 @@ void SessionCounts::Add(const IterationRecord& record) {
   recoveries += record.recovered;
   lost_stretches += record.lost && !was_lost;
   was_lost = record.lost;
+  localisation = localisation || !record.state.empty();
+  if (!first_confirmed && record.state == "confirmed") {
+    first_confirmed = iterations - 1;
+    first_confirmed_timestamp_s = record.timestamp_s;
+  }
+  ambiguous += record.state == "ambiguous";
+  max_hypotheses = std::max(max_hypotheses, record.hypotheses.size());
+  unposed += !record.posed;
 }
 
 bool MostlyUnconfirmed(const SessionCounts& counts) {
@@ -75,6 +97,8 @@ SessionRun RunSession(IterationSource& source, const SessionFactory& make_sessio
   auto stopped = [&] { return options.stop != nullptr && options.stop->load(); };
   if (options.occupancy_grid) result.grid.emplace(*options.occupancy_grid);
   try {
+    for (std::size_t skipped = 0; skipped < options.skip_scans && source.Next(iteration);)
+      ++skipped;
     while (!stopped() && wanted() && source.Next(iteration)) {
       if (!result.session) result.session = make_session(source);
       const IterationRecord record = result.session->Process(iteration);
@@ -136,6 +160,7 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
   if (c.iterations == 0) summary["problem"] = "the sequence has no scan";
   if (MostlyUnconfirmed(c))
     summary["problem"] = "most localised scans were not confirmed by the Likelihood Test";
+  if (c.localisation) AddLocalisationSummary(c, summary);
   if (!c.failure.empty()) summary["failed"] = c.failure;
   return summary;
 }

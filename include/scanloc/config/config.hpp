@@ -18,6 +18,7 @@
 #include "scanloc/maps/occupancy_grid.hpp"
 #include "scanloc/maps/point_map.hpp"
 #include "scanloc/refinement/refiner.hpp"
+#include "scanloc/session/localiser.hpp"
 #include "scanloc/session/session.hpp"
 
 namespace scanloc {
@@ -31,6 +32,7 @@ struct Config {
   // refinement: {"method", "ceres": {...}, "error_descent": {...}, "icp": {...}}
   RefinerOptions refiner;
   SessionOptions session;  // session
+  LocaliserOptions localise;  // localise: the global search and the hypotheses (scanloc localise)
   CarmenOptions log;       // log: how CARMEN logs are read
   // occupancy_grid: the map_server grid (map.pgm + map.yaml) a session writes into its run folder
   bool write_occupancy_grid = true;

@@ -26,7 +26,8 @@ class RunFolder {
   RunFolder(const RunFolder&) = delete;
   RunFolder& operator=(const RunFolder&) = delete;
 
-  // Appends one complete line to iterations.jsonl and remembers the posture for the trajectory.
+  // Appends one complete line to iterations.jsonl and remembers the posture for the trajectory
+  // (a scan without one, a localisation still searching, is left out of it).
   void Record(const IterationRecord& record);
   // Writes trajectory.tum, map.pcd, map.pgm + map.yaml when `grid` is given, and summary.json
   // (the given summary plus file names), the summary last.

@@ -19,6 +19,7 @@
 namespace scanloc {
 
 struct SessionRunOptions {
+  std::size_t skip_scans = 0;               // start after this many scans of the source
   std::size_t max_scans = 0;                // stop after this many scans (0: all)
   bool progress = true;                     // a progress line on stderr every 2 s
   const std::atomic<bool>* stop = nullptr;  // when set (Ctrl-C), the loop ends early
@@ -33,6 +34,12 @@ struct SessionCounts {
   // Stretches of scans the session was lost in, wide searches run, confirmations that ended one.
   std::size_t lost_stretches = 0, searches = 0, recoveries = 0;
   bool was_lost = false;  // lost after the last scan
+  // Localisation on a saved map: the first scan whose posture was confirmed (its index and time),
+  // the scans with several hypotheses, the most held at once, the scans without a posture.
+  bool localisation = false;  // the records carry a localisation's state
+  std::optional<std::size_t> first_confirmed;
+  double first_confirmed_timestamp_s = 0.0;
+  std::size_t ambiguous = 0, max_hypotheses = 0, unposed = 0;
   double first_timestamp_s = 0.0, min_timestamp_s = 0.0, max_timestamp_s = 0.0;
   double wall_s = 0.0;
   bool interrupted = false;  // stopped by options.stop
@@ -47,10 +54,11 @@ bool MostlyUnconfirmed(const SessionCounts& counts);
 
 // Builds the session when the first scan has been read: a source's mounting is final then
 // (CARMEN's PARAM lines precede the first scan).
-using SessionFactory = std::function<std::unique_ptr<Session>(const IterationSource& source)>;
+using SessionFactory =
+    std::function<std::unique_ptr<ScanProcessor>(const IterationSource& source)>;
 
 struct SessionRun {
-  std::unique_ptr<Session> session;  // null when the source had no scan
+  std::unique_ptr<ScanProcessor> session;  // null when the source had no scan
   SessionCounts counts;
   std::optional<OccupancyGridBuilder> grid;  // when options.occupancy_grid is set
 };

@@ -14,6 +14,7 @@
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/maps/point_map.hpp"
 #include "scanloc/session/iteration.hpp"
+#include "scanloc/session/scan_processor.hpp"
 #include "scanloc/session/localisation.hpp"
 #include "scanloc/session/map_extension.hpp"
 #include "scanloc/session/recovery.hpp"
@@ -64,35 +65,6 @@ struct SessionOptions {
   void Validate() const;
 };
 
-// Everything the operator may want to know about one iteration.
-struct IterationRecord {
-  std::size_t index = 0;
-  double timestamp_s = 0.0;
-  std::string origin;
-  bool skipped = false;  // not localised: the robot had not moved enough
-  bool first = false;    // the first iteration of a session without a prior map
-  Pose2D prediction;     // odometry prediction, T_world_robot
-  // Every candidate and refinement, when the scan was localised.
-  std::optional<LocalisationResult> localisation;
-  Pose2D T_world_robot;               // the posture kept for this scan
-  Verdict verdict = Verdict::kValid;  // the rules on the kept posture
-  bool validated = false;
-  double max_expect_value_m = 0.0;        // rule 2's E_max in force
-  double signature_expect_value_m = 0.0;  // the laser signature's bound (in force or not)
-  // The wide search, when the session was lost before this scan: its window and what it found.
-  std::optional<SearchWindow> search_window;
-  std::optional<WideSearchResult> search;
-  bool lost = false;           // lost after this scan (several unconfirmed in a row)
-  bool recovered = false;      // confirmed after being lost
-  bool inserted = false;       // the scan extended the map
-  std::size_t carved = 0;      // map points removed by this scan's free space
-  std::size_t map_points = 0;  // after this iteration
-  double insert_s = 0.0, total_s = 0.0;
-
-  // The refinement kept, when the scan was localised.
-  const RankedCandidate* Kept() const { return localisation ? localisation->Kept() : nullptr; }
-};
-
 // The candidates a session tries: the prediction, turned about the laser by every multiple of
 // options.heading_step_rad up to ±options.heading_spread_rad when `turning`, then the external
 // ones (labels "odometry", "odometry+5deg", …, "external0", …).
@@ -107,7 +79,7 @@ struct SessionConfig {
   LocalisationOptions localisation;
 };
 
-class Session {
+class Session : public ScanProcessor {
  public:
   // `line_map` (may be empty) stays fixed; `point_map` is extended by the session.
   Session(const SessionConfig& config, LaserMounting mounting, LineMap line_map,
@@ -115,11 +87,11 @@ class Session {
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
 
-  IterationRecord Process(const Iteration& iteration);
+  IterationRecord Process(const Iteration& iteration) override;
 
-  const PointMap& point_map() const { return point_map_; }
+  const PointMap& point_map() const override { return point_map_; }
   const LineMap& line_map() const { return line_map_; }
-  const LaserMounting& mounting() const { return mounting_; }
+  const LaserMounting& mounting() const override { return mounting_; }
   std::size_t iterations() const { return count_; }
   const LaserSignature& signature() const { return signature_; }
 

@@ -1,0 +1,46 @@
+// scanloc localise: localise every scan of a recorded sequence on a saved map that is never
+// changed, from a given posture or from none (a global search), holding every hypothesis the
+// Likelihood Test cannot yet tell apart.
+
+#include <memory>
+#include <stdexcept>
+
+#include "commands.hpp"
+#include "sequence_command.hpp"
+#include "scanloc/session/localiser.hpp"
+
+namespace scanloc::app {
+namespace {
+
+void Run(const SequenceArguments& a) {
+  if (a.point_map_path.empty() && a.line_map_path.empty())
+    throw std::invalid_argument("localise needs a map: --point-map MAP.pcd, --line-map FILE, or both");
+  Config config = a.config.Build();
+  config.write_occupancy_grid = false;  // the map is not the run's: it is not rebuilt
+  LocaliserConfig localiser;
+  localiser.localiser = config.localise;
+  if (!a.initial_pose.empty())
+    localiser.initial_pose = Pose2D(a.initial_pose[0], a.initial_pose[1], a.initial_pose[2]);
+  RunSequence(a, config, [&](const Config& c, LineMap lines, PointMap points) {
+    localiser.session = c.session;
+    localiser.localisation = {c.scoring, c.validation, c.refiner};
+    return std::make_unique<Localiser>(localiser, c.mounting, std::move(lines), std::move(points));
+  });
+}
+
+}  // namespace
+
+void RegisterLocaliseCommand(CLI::App& app) {
+  auto arguments = std::make_shared<SequenceArguments>();
+  CLI::App* command = app.add_subcommand(
+      "localise",
+      "localise a recorded sequence on a saved map (never changed), from an unknown start");
+  arguments->Register(*command, "saved point map (PCD) to localise on");
+  command->add_option("--initial-pose", arguments->initial_pose,
+                      "the first posture x y theta when known (default: searched on the map)")
+      ->expected(3)
+      ->check(PlausibleCoordinate());
+  command->final_callback([arguments] { Run(*arguments); });
+}
+
+}  // namespace scanloc::app

@@ -1,0 +1,194 @@
+#include "sequence_command.hpp"
+
+#include <atomic>
+#include <csignal>
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "scanloc/common/output_folder.hpp"
+#include "scanloc/io/run_folder.hpp"
+#include "scanloc/io/session_run.hpp"
+#include "scanloc/maps/point_map_io.hpp"
+
+namespace scanloc::app {
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+extern "C" void OnInterrupt(int) {
+  g_interrupted = true;
+}
+
+// The inputs as absolute paths, so that `scanloc report` finds them from anywhere.
+nlohmann::json Inputs(const SequenceArguments& a) {
+  auto absolute = [](const std::string& path) {
+    return path.empty()
+               ? nlohmann::json(nullptr)
+               : nlohmann::json(std::filesystem::absolute(path).lexically_normal().string());
+  };
+  return {{"log", absolute(a.log_path)},
+          {"line_map", absolute(a.line_map_path)},
+          {"point_map", absolute(a.point_map_path)}};
+}
+
+void PrintWarnings(const nlohmann::json& summary) {
+  const std::size_t disordered = summary["timestamps_not_increasing"].get<std::size_t>();
+  if (disordered > 0)
+    std::cerr
+        << "warning: " << disordered
+        << " scans have a timestamp that is not after the previous scan's (kept in log order)\n";
+  const std::size_t zero = summary["timestamps_zero"].get<std::size_t>();
+  if (zero > 0)
+    std::cerr << "warning: " << zero
+              << " scans have a zero timestamp (the trajectory keeps them in log order; matching "
+                 "it by time is ambiguous)\n";
+  const std::size_t late_offsets = summary["laser_offsets_ignored"].get<std::size_t>();
+  if (late_offsets > 0)
+    std::cerr << "warning: " << late_offsets
+              << " PARAM robot_frontlaser_offset lines after the first scan were ignored (the "
+                 "mounting stays the one in force at the first scan)\n";
+  if (!summary["skipped_messages"].empty()) {
+    std::cout << "skipped messages:";
+    for (const auto& [type, count] : summary["skipped_messages"].items())
+      std::cout << " " << type << " " << count.get<std::size_t>();
+    std::cout << "\n";
+  }
+  const std::size_t reversed = summary["odometry_reversed_increments"].get<std::size_t>();
+  if (reversed > 0)
+    std::cout << "odometry: " << reversed
+              << " increments reversed (the log's pose moved forward while ODOM reported a "
+                 "negative velocity; --raw-odometry keeps them)\n";
+}
+
+// A localisation on a saved map: when it confirmed its posture, or loudly that it never did.
+void PrintLocalisation(const SessionCounts& c) {
+  if (!c.localisation) return;
+  if (c.first_confirmed)
+    std::cout << "localise: posture confirmed at scan " << *c.first_confirmed << ", "
+              << c.first_confirmed_timestamp_s - c.first_timestamp_s << " s into the log; "
+              << c.ambiguous << " scans ambiguous (at most " << c.max_hypotheses
+              << " hypotheses), " << c.unposed << " without a posture\n";
+  else
+    std::cerr << "warning: no posture was ever confirmed on the map (" << c.ambiguous
+              << " scans ambiguous, at most " << c.max_hypotheses << " hypotheses, "
+              << c.unposed << " scans without a posture): trajectory.tum holds unconfirmed "
+              << "guesses only\n";
+}
+
+void PrintOutcome(const SessionRun& run, const nlohmann::json& summary, const RunFolder& folder,
+                  const OccupancyGrid* grid) {
+  const SessionCounts& c = run.counts;
+  std::cout << "run: " << c.iterations << " scans (" << c.localised << " localised, "
+            << c.validated << " validated, " << c.flagged << " flagged), map "
+            << summary["map_points"] << " points, " << c.wall_s << " s ("
+            << summary["times_real_time"].get<double>() << "× real time), peak "
+            << summary["peak_resident_mb"].get<double>() << " MB"
+            << (c.interrupted ? ", interrupted" : "") << "\n";
+  if (c.searches > 0 || c.lost_stretches > 0)
+    std::cout << "lost " << c.lost_stretches << " times, " << c.searches << " wide searches, "
+              << c.recoveries << " recoveries" << (c.was_lost ? ", lost at the end" : "") << "\n";
+  PrintLocalisation(c);
+  PrintWarnings(summary);
+  if (grid)
+    std::cout << "occupancy grid: " << grid->width << " × " << grid->height << " cells of "
+              << grid->resolution_m << " m from " << run.grid->scans() << " scans\n";
+  std::cout << "wrote " << folder.directory() << "/{iterations.jsonl,trajectory.tum,map.pcd,"
+            << (grid ? "map.pgm,map.yaml," : "") << "summary.json}\n";
+}
+
+// One line when the log's own saturation code lowers the range limit below log.max_range_m.
+void ReportNoReturn(const IterationSource& source, const CarmenOptions& carmen) {
+  const std::optional<double> recognised_m = source.recognised_no_return_m();
+  if (recognised_m && *recognised_m < carmen.max_range_m)
+    std::cerr << "log: readings at or beyond " << *recognised_m
+              << " m are no-return (the log's saturation code; log.max_range_m is "
+              << carmen.max_range_m << ", log.no_return_m sets it by hand)\n";
+}
+
+// A run whose localised scans were mostly not confirmed is said loudly (its trajectory is mostly
+// odometry or unconfirmed guesses); under --strict it is an error.
+void WarnIfMostlyUnconfirmed(const SessionCounts& c, bool strict) {
+  if (!MostlyUnconfirmed(c)) return;
+  const std::string message =
+      std::to_string(c.flagged) + " of " + std::to_string(c.localised) +
+      " localised scans were not confirmed by the Likelihood Test: the trajectory is not "
+      "trustworthy (see iterations.jsonl, scanloc report)";
+  if (strict) throw std::runtime_error(message);
+  std::cerr << "warning: " << message << "\n";
+}
+
+}  // namespace
+
+void SequenceArguments::Register(CLI::App& command, const std::string& point_map_help) {
+  command
+      .add_option("--log", log_path, "CARMEN log, ROS 1 bag or native sequence (told by content)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command.add_option("--line-map", line_map_path, "off-line line map")->check(CLI::ExistingFile);
+  command.add_option("--point-map", point_map_path, point_map_help)->check(CLI::ExistingFile);
+  command.add_option("--out", out_dir, "run folder to write (new or empty)")->required();
+  command.add_flag("--force", force, "write into an --out folder that is not empty");
+  command.add_option("--laser-offset", laser_offset_m,
+                     "laser distance ahead of the robot base (m); overrides the log's PARAM");
+  command.add_option("--scan-topic", bag.scan_topic, "ROS bag: LaserScan topic (default /scan)");
+  command.add_option("--odom-topic", bag.odometry_topic,
+                     "ROS bag: Odometry topic (default /odom; without it, /tf odom → base_link)");
+  command.add_option("--skip-scans", skip_scans, "start after this many scans of the log");
+  command.add_option("--max-scans", max_scans, "stop after this many scans (0: all)");
+  command.add_flag("--quiet", quiet, "no progress line on stderr");
+  command.add_flag("--strict", strict,
+                   "exit non-zero when most localised scans were not confirmed (the run is "
+                   "written all the same)");
+  command.add_flag("--raw-odometry", raw_odometry,
+                   "use a CARMEN log's odometry as logged, without reversing the increments that "
+                   "move forward while ODOM reports a negative velocity");
+  config.Register(command);
+}
+
+void RunSequence(const SequenceArguments& a, Config config, const ProcessorMaker& make) {
+  RefuseNonEmptyFolder(a.out_dir, a.force);  // before anything is read (RunFolder checks again)
+  CarmenOptions carmen = config.log;  // --laser-offset and --raw-odometry override it
+  if (a.laser_offset_m) carmen.laser_offset_m = a.laser_offset_m;
+  if (a.raw_odometry) carmen.repair_reversed_odometry = false;
+  RosBagOptions bag = a.bag;
+  if (a.laser_offset_m) bag.mounting = Pose2D(*a.laser_offset_m, 0.0, 0.0);
+  auto source = OpenIterationSource(a.log_path, carmen, bag);
+  ReportNoReturn(*source, carmen);
+  LineMap lines = a.line_map_path.empty() ? LineMap{} : ReadLineMap(a.line_map_path);
+  PointMap points = a.point_map_path.empty() ? PointMap(config.point_map)
+                                             : LoadPointMapPcd(a.point_map_path, config.point_map);
+  RunFolder folder(a.out_dir, a.force);
+  std::signal(SIGINT, OnInterrupt);
+  std::signal(SIGTERM, OnInterrupt);
+  const SessionFactory make_session = [&](const IterationSource& from) {
+    config.mounting =
+        ChooseMounting(from.mounting(), config.mounting, carmen.laser_offset_m.has_value());
+    return make(config, std::move(lines), std::move(points));
+  };
+  SessionRunOptions run_options;
+  run_options.skip_scans = a.skip_scans;
+  run_options.max_scans = a.max_scans;
+  run_options.progress = !a.quiet;
+  run_options.stop = &g_interrupted;
+  if (config.write_occupancy_grid) run_options.occupancy_grid = config.occupancy_grid;
+  const SessionRun run = RunSession(*source, make_session, folder, run_options);
+  nlohmann::json summary = SummaryJson(run, *source);
+  summary["log"] = a.log_path;
+  summary["config"] = ToJson(config);
+  summary["odometry_reversal_repair"] = carmen.repair_reversed_odometry;
+  summary["inputs"] = Inputs(a);
+  const PointMap empty_map(config.point_map);
+  std::optional<OccupancyGrid> grid;
+  if (run.grid && run.grid->scans() > 0) grid = run.grid->Build();
+  folder.Finish(run.session ? run.session->point_map() : empty_map, summary,
+                grid ? &*grid : nullptr);
+  PrintOutcome(run, summary, folder, grid ? &*grid : nullptr);
+  if (run.counts.failure.empty()) WarnIfMostlyUnconfirmed(run.counts, a.strict);
+  if (!run.counts.failure.empty())
+    throw std::runtime_error("the run stopped at scan " + std::to_string(run.counts.iterations) +
+                             ": " + run.counts.failure + " (what it did before is written in " +
+                             folder.directory() + ")");
+}
+
+}  // namespace scanloc::app

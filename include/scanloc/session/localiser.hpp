@@ -1,0 +1,87 @@
+#pragma once
+// Localisation on a saved map, which it never changes, from an unknown start (the localise issue).
+// Without a posture it searches the whole map (WideSearch over every position and heading); the
+// refined candidates that pass rules 1–3 are all held as hypotheses (§3.3, last paragraph: "store
+// the posture candidates that comply to the rules 1, 2, 3 and confirm or discard them as the
+// system progresses"). Each is carried with the odometry and localised again at every scan; one
+// the rules stop validating is discarded. The posture is confirmed when a single hypothesis is
+// left and the rules validated it confirm_after scans in a row; while several are held the output
+// says "ambiguous" and lists them. A confirmed posture that the rules stop validating (a robot
+// carried elsewhere) is lost: it is held on as one hypothesis among those a new search finds.
+
+#include <optional>
+#include <vector>
+
+#include "scanloc/maps/line_map.hpp"
+#include "scanloc/maps/point_map.hpp"
+#include "scanloc/session/scan_processor.hpp"
+#include "scanloc/session/session.hpp"
+
+namespace scanloc {
+
+struct LocaliserOptions {
+  // The global search: its grid, how many distinct postures it hands to the refinement.
+  WideSearchOptions search = DefaultGlobalSearch();
+  // Scans in a row the rules must validate the only hypothesis left before it is confirmed; and
+  // a global search made after it was found, once the robot moved, must have found no other.
+  int confirm_after = 3;
+  // Until a posture is confirmed, the whole map is searched again once the odometry moved this
+  // far or turned this much since the last search (a new view may show a place missed before).
+  double research_distance_m = 1.0;
+  double research_turn_rad = 0.8;
+  // A hypothesis not yet confirmed is discarded after this many unconfirmed scans in a row; a
+  // confirmed posture is lost after lost_after_unconfirmed.
+  int drop_after_unconfirmed = 2;
+  int lost_after_unconfirmed = 5;
+  int max_hypotheses = 8;  // the best by confirmations, then cost, are kept
+  // Hypotheses closer than both of these are one (the better kept).
+  double same_posture_m = 0.3;
+  double same_posture_rad = 0.1;
+
+  static WideSearchOptions DefaultGlobalSearch();
+  // Throws std::invalid_argument naming the first option out of its domain.
+  void Validate() const;
+};
+
+struct LocaliserConfig {
+  SessionOptions session;  // the candidates around a hypothesis and the localise gate
+  LocalisationOptions localisation;
+  LocaliserOptions localiser;
+  std::optional<Pose2D> initial_pose;  // T_world_robot when known: the first hypothesis
+};
+
+class Localiser : public ScanProcessor {
+ public:
+  // `line_map` and `point_map` (either may be empty, not both) stay as they are.
+  Localiser(const LocaliserConfig& config, LaserMounting mounting, LineMap line_map,
+            PointMap point_map);
+
+  IterationRecord Process(const Iteration& iteration) override;
+  const PointMap& point_map() const override { return point_map_; }
+  const LaserMounting& mounting() const override { return mounting_; }
+  const std::vector<Hypothesis>& hypotheses() const { return hypotheses_; }
+  bool confirmed() const { return confirmed_; }
+
+ private:
+  MapView View() const { return {line_map_.empty() ? nullptr : &line_map_, &point_map_}; }
+  bool SearchDue(const Iteration& iteration) const;
+  void Search(IterationRecord& record, const Iteration& iteration);
+  void Track(IterationRecord& record, const Iteration& iteration);
+  void Prune();
+  void Conclude(IterationRecord& record);
+
+  LocaliserConfig config_;
+  LaserMounting mounting_;
+  LineMap line_map_;
+  PointMap point_map_;
+  std::vector<Hypothesis> hypotheses_;  // best first
+  bool confirmed_ = false;
+  bool lost_ = false;  // a confirmed posture was lost and not yet found again
+  std::size_t count_ = 0;
+  std::optional<Pose2D> last_odometry_;
+  std::optional<Pose2D> last_localised_odometry_;
+  std::optional<Pose2D> last_search_odometry_;
+  bool search_due_ = false;  // a confirmed posture was just lost
+};
+
+}  // namespace scanloc

@@ -1,0 +1,72 @@
+#pragma once
+// What one iteration did, for the operator, and the interface of what produces it: a session that
+// grows its map (Session) or a localisation on a saved map (Localiser).
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scanloc/maps/point_map.hpp"
+#include "scanloc/session/iteration.hpp"
+#include "scanloc/session/localisation.hpp"
+#include "scanloc/session/wide_search.hpp"
+
+namespace scanloc {
+
+// A posture held while the scans have not yet told it from others (§3.3, last paragraph): carried
+// with the odometry, confirmed or discarded by the next scans' Likelihood Tests.
+struct Hypothesis {
+  Pose2D T_world_robot;
+  int confirmed_in_row = 0;    // scans in a row whose rules validated it, up to now
+  int unconfirmed_in_row = 0;  // scans in a row whose rules did not
+  int confirmations = 0;       // scans that validated it since it was found
+  double cost = 0.0;           // (3.11) at the last scan that localised it
+  bool validated = false;      // at the last scan that localised it
+  int searches = 0;  // global searches since it was found (the user's initial posture counts one)
+};
+
+// Everything the operator may want to know about one iteration.
+struct IterationRecord {
+  std::size_t index = 0;
+  double timestamp_s = 0.0;
+  std::string origin;
+  bool skipped = false;  // not localised: the robot had not moved enough
+  bool first = false;    // the first iteration of a session without a prior map
+  Pose2D prediction;     // odometry prediction, T_world_robot
+  // Every candidate and refinement, when the scan was localised.
+  std::optional<LocalisationResult> localisation;
+  Pose2D T_world_robot;               // the posture kept for this scan
+  Verdict verdict = Verdict::kValid;  // the rules on the kept posture
+  bool validated = false;
+  double max_expect_value_m = 0.0;        // rule 2's E_max in force
+  double signature_expect_value_m = 0.0;  // the laser signature's bound (in force or not)
+  // The wide search, when the session was lost before this scan: its window and what it found.
+  std::optional<SearchWindow> search_window;
+  std::optional<WideSearchResult> search;
+  // Localisation on a saved map (Localiser): "searching", "ambiguous", "tentative" or "confirmed"
+  // ("" in a session), and the hypotheses held after this scan, best first. A scan without a
+  // hypothesis has no posture (posed false): it is left out of the trajectory.
+  std::string state;
+  std::vector<Hypothesis> hypotheses;
+  bool posed = true;
+  bool lost = false;           // lost after this scan (several unconfirmed in a row)
+  bool recovered = false;      // confirmed after being lost
+  bool inserted = false;       // the scan extended the map
+  std::size_t carved = 0;      // map points removed by this scan's free space
+  std::size_t map_points = 0;  // after this iteration
+  double insert_s = 0.0, total_s = 0.0;
+
+  // The refinement kept, when the scan was localised.
+  const RankedCandidate* Kept() const { return localisation ? localisation->Kept() : nullptr; }
+};
+
+// Turns each iteration of a sequence into its record.
+class ScanProcessor {
+ public:
+  virtual ~ScanProcessor() = default;
+  virtual IterationRecord Process(const Iteration& iteration) = 0;
+  virtual const PointMap& point_map() const = 0;
+  virtual const LaserMounting& mounting() const = 0;
+};
+
+}  // namespace scanloc

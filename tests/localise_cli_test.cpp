@@ -1,0 +1,78 @@
+// `scanloc localise` on the shipped classroom: from no initial posture it holds the room's two
+// look-alike postures (the chapter's small-map ambiguity, Figure 6) until the scans tell them
+// apart, then follows the posture a session started at the known one keeps.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "run_scanloc.hpp"
+#include "test_support.hpp"
+
+namespace scanloc {
+namespace {
+
+std::vector<std::vector<double>> ReadTum(const std::string& path) {
+  std::istringstream in(testing::ReadWholeFile(path));
+  std::vector<std::vector<double>> rows;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    std::vector<double> row(8);
+    for (double& v : row) fields >> v;
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+class LocaliseCliTest : public testing::TemporaryDirTest {
+ protected:
+  std::string Classroom(const std::string& file) const {
+    return std::string(SCANLOC_SOURCE_DIR) + "/datasets/classroom/" + file;
+  }
+};
+
+TEST_F(LocaliseCliTest, FromNoPostureTheClassroomIsAmbiguousThenFollowsTheSessionWithin2cm) {
+  const auto session = testing::RunScanloc(
+      {"session", "--log", Classroom("classroom.seq.jsonl"), "--line-map",
+       Classroom("classroom.lines"), "--initial-pose", "1.126", "3.112", "0.0463", "--out",
+       dir_ + "/session", "--quiet"},
+      dir_);
+  ASSERT_TRUE(session.exited && session.exit_code == 0) << session;
+  const auto localise = testing::RunScanloc(
+      {"localise", "--log", Classroom("classroom.seq.jsonl"), "--line-map",
+       Classroom("classroom.lines"), "--out", dir_ + "/localise", "--quiet"},
+      dir_);
+  ASSERT_TRUE(localise.exited && localise.exit_code == 0) << localise;
+  EXPECT_NE(localise.out.find("localise: posture confirmed at scan"), std::string::npos)
+      << localise;
+  const auto summary =
+      nlohmann::json::parse(testing::ReadWholeFile(dir_ + "/localise/summary.json"));
+  ASSERT_TRUE(summary["first_confirmed_scan"].is_number()) << summary.dump(2);
+  const std::size_t confirmed = summary["first_confirmed_scan"].get<std::size_t>();
+  EXPECT_GE(summary["max_hypotheses"].get<int>(), 2);  // the room turned half a turn
+  EXPECT_GE(summary["ambiguous_scans"].get<int>(), 10);
+  const auto reference = ReadTum(dir_ + "/session/trajectory.tum");
+  const auto found = ReadTum(dir_ + "/localise/trajectory.tum");
+  ASSERT_EQ(found.size(), reference.size());
+  for (std::size_t i = confirmed; i < found.size(); ++i)
+    EXPECT_LT(std::hypot(found[i][1] - reference[i][1], found[i][2] - reference[i][2]), 0.02)
+        << "scan " << i;
+}
+
+TEST_F(LocaliseCliTest, WithoutAMapItIsRefusedAndNothingIsWritten) {
+  const auto run = testing::RunScanloc(
+      {"localise", "--log", Classroom("classroom.seq.jsonl"), "--out", dir_ + "/run", "--quiet"},
+      dir_);
+  ASSERT_TRUE(run.exited) << run;
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find("localise needs a map"), std::string::npos) << run;
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/run")) << "a run folder was created";
+}
+
+}  // namespace
+}  // namespace scanloc

@@ -1,0 +1,165 @@
+#include "scanloc/session/localiser.hpp"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <random>
+
+#include "scanloc/worlds/laser_simulator.hpp"
+#include "test_support.hpp"
+
+namespace scanloc {
+namespace {
+
+void AddBox(LineMap& map, double x0, double y0, double x1, double y1) {
+  map.segments.push_back({{x0, y0}, {x1, y0}});
+  map.segments.push_back({{x1, y0}, {x1, y1}});
+  map.segments.push_back({{x1, y1}, {x0, y1}});
+  map.segments.push_back({{x0, y1}, {x0, y0}});
+}
+
+// Two 8 m × 5 m rooms 20 m apart, each split by a partition from the south wall at x = 4 m that
+// leaves a 1.5 m gap in the north; only the eastern room has a box in the south-east quarter,
+// out of sight from the west half.
+LineMap TwoRooms() {
+  LineMap map;
+  for (const double x : {0.0, 20.0}) {
+    AddBox(map, x, 0.0, x + 8.0, 5.0);
+    map.segments.push_back({{x + 4.0, 0.0}, {x + 4.0, 3.5}});
+  }
+  AddBox(map, 25.0, 0.5, 27.5, 2.5);
+  return map;
+}
+
+struct Drive {
+  std::vector<Iteration> iterations;
+  std::vector<Pose2D> truth;
+};
+
+// `steps` scans 5 cm apart along the truth's heading (turning `turn_rad` per step), with odometry
+// drifting (2 % in distance, 0.3° per step in heading; fixed seed); the truth jumps to `kidnap_to`
+// at scan `kidnap_at` while the odometry goes on as if nothing happened.
+Drive DriveThrough(const LineMap& world, Pose2D truth, int steps, double range_max_m,
+                   double turn_rad = 0.0, int kidnap_at = -1, Pose2D kidnap_to = {},
+                   const std::function<Pose2D(int)>& step_at = nullptr) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  LaserSimulatorOptions laser;
+  laser.beam_count = 720;
+  laser.range_max_m = range_max_m;
+  laser.reliable_range_m = range_max_m;
+  Drive drive;
+  Pose2D odometry;
+  for (int i = 0; i < steps; ++i) {
+    if (i > 0) {
+      const Pose2D step = step_at ? step_at(i) : Pose2D{0.05, 0.0, turn_rad};
+      truth = i == kidnap_at ? kidnap_to : truth * step;
+      odometry = odometry * Pose2D{step.x_m * (1.02 + 0.01 * noise(rng)), 0.002 * noise(rng),
+                                   step.yaw_rad + 0.005 * noise(rng)};
+    }
+    Iteration it;
+    it.timestamp_s = 0.1 * i;
+    it.scan = SimulateLaser(world, truth, laser, rng);
+    it.odometry = odometry;
+    drive.iterations.push_back(it);
+    drive.truth.push_back(truth);
+  }
+  return drive;
+}
+
+LocaliserConfig DefaultConfig() {
+  LocaliserConfig config;
+  return config;
+}
+
+double ErrorM(const Pose2D& a, const Pose2D& b) {
+  return std::hypot(a.x_m - b.x_m, a.y_m - b.y_m);
+}
+
+TEST(Localiser, TwoAlikeRoomsStayAmbiguousUntilTheBoxTellsThemApartThenTheRightOneIsConfirmed) {
+  const LineMap world = TwoRooms();
+  // In the western room's west half: north 2.7 m, a quarter turn, then east through the gap (the
+  // eastern room's box comes into sight past x ≈ 4 m, from scan 90 on).
+  const auto path = [](int i) {
+    return i <= 54 ? Pose2D{0.05, 0.0, 0.0} : i <= 70 ? Pose2D{0.0, 0.0, -M_PI / 32.0}
+                                                     : Pose2D{0.05, 0.0, 0.0};
+  };
+  const Drive drive = DriveThrough(world, {2.0, 1.5, M_PI / 2.0}, 150, 20.0, 0.0, -1, {}, path);
+  Localiser localiser(DefaultConfig(), {}, world, PointMap{});
+  int first_confirmed = -1, ambiguous_with_both = 0;
+  for (std::size_t i = 0; i < drive.iterations.size(); ++i) {
+    const IterationRecord r = localiser.Process(drive.iterations[i]);
+    bool west = false, east = false;
+    for (const Hypothesis& h : r.hypotheses) {
+      const Pose2D truth = drive.truth[i];
+      west = west || ErrorM(h.T_world_robot, truth) < 0.1;
+      east = east || ErrorM(h.T_world_robot, {truth.x_m + 20.0, truth.y_m, truth.yaw_rad}) < 0.1;
+    }
+    if (r.state == "ambiguous" && west && east) ++ambiguous_with_both;
+    if (r.state == "confirmed") {
+      if (first_confirmed < 0) first_confirmed = static_cast<int>(i);
+      EXPECT_LT(ErrorM(r.T_world_robot, drive.truth[i]), 0.05) << "the wrong room, scan " << i;
+    }
+  }
+  // Both rooms held from the first scan until the box came into sight through the gap, looking
+  // east (after the turn, scan 70; 108 in this run).
+  EXPECT_GE(ambiguous_with_both, 80) << "both rooms were not held while they looked alike";
+  EXPECT_GT(first_confirmed, 70);
+  EXPECT_LE(first_confirmed, 130);
+  ASSERT_TRUE(localiser.confirmed());
+  EXPECT_LT(ErrorM(localiser.hypotheses().front().T_world_robot, drive.truth.back()), 0.05);
+}
+
+TEST(Localiser, FindsItselfOnTheClassroomFromNoInitialPostureWithinFiveCentimetres) {
+  LineMap world = testing::Classroom();
+  world.segments.push_back({{2.4, 0.6}, {3.6, 0.6}});
+  const Drive drive = DriveThrough(world, {1.5, 2.0, 0.3}, 80, 20.0, 0.02);
+  Localiser localiser(DefaultConfig(), {}, world, PointMap{});
+  int first_confirmed = -1;
+  double worst_after_m = 0.0;
+  for (std::size_t i = 0; i < drive.iterations.size(); ++i) {
+    const IterationRecord r = localiser.Process(drive.iterations[i]);
+    if (r.state == "confirmed" && first_confirmed < 0) first_confirmed = static_cast<int>(i);
+    if (first_confirmed >= 0) worst_after_m = std::max(worst_after_m, ErrorM(r.T_world_robot, drive.truth[i]));
+  }
+  ASSERT_GE(first_confirmed, 0);
+  EXPECT_LE(first_confirmed, 40);  // a second search after 1 m of travel confirms it
+  EXPECT_LT(worst_after_m, 0.05);
+}
+
+TEST(Localiser, CarriedElsewhereItIsLostThenConfirmsTheNewPlaceWithinThirtyScans) {
+  // The classroom with a desk and a cupboard: no turn of the room looks like another.
+  LineMap world = testing::Classroom();
+  world.segments.push_back({{2.4, 0.6}, {3.6, 0.6}});
+  AddBox(world, 0.3, 5.5, 1.5, 6.7);
+  const int kidnap_at = 60;
+  const Drive drive = DriveThrough(world, {1.5, 2.0, 0.3}, 140, 20.0, 0.02, kidnap_at,
+                                   Pose2D{4.5, 4.5, -2.0});
+  LocaliserConfig config = DefaultConfig();
+  config.initial_pose = drive.truth.front();
+  Localiser localiser(config, {}, world, PointMap{});
+  int lost_at = -1, recovered_at = -1;
+  for (std::size_t i = 0; i < drive.iterations.size(); ++i) {
+    const IterationRecord r = localiser.Process(drive.iterations[i]);
+    if (static_cast<int>(i) < kidnap_at) {
+      EXPECT_FALSE(r.lost) << "scan " << i;
+      if (i >= 5) {
+        EXPECT_EQ(r.state, "confirmed") << "scan " << i;
+      }
+    }
+    if (r.lost && lost_at < 0) lost_at = static_cast<int>(i);
+    if (r.recovered && recovered_at < 0) recovered_at = static_cast<int>(i);
+  }
+  ASSERT_GE(lost_at, kidnap_at);
+  EXPECT_LE(lost_at, kidnap_at + 6);
+  ASSERT_GE(recovered_at, 0);
+  EXPECT_LE(recovered_at, kidnap_at + 30);
+  EXPECT_LT(ErrorM(localiser.hypotheses().front().T_world_robot, drive.truth.back()), 0.05);
+}
+
+TEST(Localiser, AnEmptyMapIsRefused) {
+  EXPECT_THROW(Localiser(DefaultConfig(), {}, {}, PointMap{}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace scanloc
