@@ -1,5 +1,7 @@
 // scanloc compare: one sequence with ground truth localised against the line map, against a point
-// map grown from nothing and against both, each measured against the truth.
+// map grown from nothing and against both, each measured against the truth; or, with --runs, run
+// folders of `session` and `localise` set side by side (e.g. localise on a line map and on a scan
+// map of the same place).
 
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -7,6 +9,7 @@
 #include "commands.hpp"
 #include "common_options.hpp"
 #include "scanloc/evaluation/mode_comparison.hpp"
+#include "scanloc/report/run_comparison.hpp"
 
 namespace scanloc::app {
 namespace {
@@ -38,6 +41,7 @@ void RegisterCompareCommand(CLI::App& app) {
   struct Arguments {
     std::string sequence_path;
     std::vector<std::string> line_map_paths;
+    std::vector<std::string> runs;
     std::vector<std::string> modes{"lines", "points", "both"};
     std::size_t max_iterations = 0;
     bool json = false;
@@ -48,15 +52,23 @@ void RegisterCompareCommand(CLI::App& app) {
       "compare",
       "localise a sequence with ground truth against the line map, a point map grown from "
       "nothing, and both; print each mode's validation rate, error against the truth, moments "
-      "and time");
-  command->add_option("--sequence", a->sequence_path, "native sequence with truth (.seq.jsonl)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command
-      ->add_option("--line-map", a->line_map_paths,
-                   "line map; several files make one map (e.g. office.lines blinds.lines)")
-      ->required()
-      ->check(CLI::ExistingFile);
+      "and time (or, with --runs, set run folders side by side)");
+  auto* sequence =
+      command->add_option("--sequence", a->sequence_path, "native sequence with truth (.seq.jsonl)")
+          ->check(CLI::ExistingFile);
+  auto* line_map =
+      command
+          ->add_option("--line-map", a->line_map_paths,
+                       "line map; several files make one map (e.g. office.lines blinds.lines)")
+          ->check(CLI::ExistingFile);
+  auto* runs = command
+                   ->add_option("--runs", a->runs,
+                                "run folders of `session` or `localise` to set side by side; the "
+                                "postures of each are measured against the first's")
+                   ->check(CLI::ExistingDirectory)
+                   ->excludes(sequence)
+                   ->excludes(line_map);
+  sequence->needs(line_map);
   command
       ->add_option("--modes", a->modes, "modes to run, in order: lines, points, both (default all)")
       ->delimiter(',')
@@ -64,7 +76,13 @@ void RegisterCompareCommand(CLI::App& app) {
   command->add_option("--max-iterations", a->max_iterations, "stop after this many (0: all)");
   command->add_flag("--json", a->json, "print one JSON object per mode instead of the table");
   a->config.Register(*command);
-  command->final_callback([a] {
+  command->final_callback([a, runs] {
+    if (runs->count() > 0) {
+      PrintRunComparison(std::cout, CompareRuns(a->runs));
+      return;
+    }
+    if (a->sequence_path.empty() || a->line_map_paths.empty())
+      throw CLI::ValidationError("compare", "--sequence and --line-map, or --runs, are required");
     const Config config = a->config.Build();
     LineMap line_map;
     for (const auto& path : a->line_map_paths) {

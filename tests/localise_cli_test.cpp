@@ -62,6 +62,44 @@ TEST_F(LocaliseCliTest, FromNoPostureTheClassroomIsAmbiguousThenFollowsTheSessio
   for (std::size_t i = confirmed; i < found.size(); ++i)
     EXPECT_LT(std::hypot(found[i][1] - reference[i][1], found[i][2] - reference[i][2]), 0.02)
         << "scan " << i;
+  // The report tells the ambiguity and when it ended.
+  const auto report = testing::RunScanloc({"report", dir_ + "/localise"}, dir_);
+  ASSERT_TRUE(report.exited && report.exit_code == 0) << report;
+  const std::string page = testing::ReadWholeFile(dir_ + "/localise/report.html");
+  EXPECT_TRUE(testing::Contains(page, "ambiguous (2 hypotheses)"));
+  EXPECT_TRUE(testing::Contains(page, "first confirmed scan</th><td>" + std::to_string(confirmed)));
+}
+
+TEST_F(LocaliseCliTest, CompareSetsALocaliseRunBesideTheSessionWithTheDistanceBetweenTheirPostures) {
+  const std::vector<std::string> common{"--log", Classroom("classroom.seq.jsonl"), "--line-map",
+                                        Classroom("classroom.lines"), "--quiet", "--out"};
+  auto words = [&](const std::string& command, const std::string& out) {
+    std::vector<std::string> w{command};
+    w.insert(w.end(), common.begin(), common.end());
+    w.push_back(dir_ + "/" + out);
+    return w;
+  };
+  std::vector<std::string> session = words("session", "session");
+  session.insert(session.end(), {"--initial-pose", "1.126", "3.112", "0.0463"});
+  ASSERT_EQ(testing::RunScanloc(session, dir_).exit_code, 0);
+  ASSERT_EQ(testing::RunScanloc(words("localise", "localise"), dir_).exit_code, 0);
+  const auto compare = testing::RunScanloc(
+      {"compare", "--runs", dir_ + "/session", dir_ + "/localise"}, dir_);
+  ASSERT_TRUE(compare.exited && compare.exit_code == 0) << compare;
+  // The localise run's line: line map, confirmed at a scan, then the median / max distance.
+  std::istringstream lines(compare.out);
+  std::string header, first, second;
+  std::getline(lines, header);
+  std::getline(lines, first);
+  std::getline(lines, second);
+  EXPECT_TRUE(testing::Contains(second, "line map")) << compare.out;
+  EXPECT_TRUE(testing::Contains(second, "scan ")) << compare.out;
+  const std::size_t slash = second.rfind(" / ");
+  ASSERT_NE(slash, std::string::npos) << compare.out;
+  const double median_m = std::stod(second.substr(second.rfind(' ', slash - 1) + 1));
+  const double max_m = std::stod(second.substr(slash + 3));
+  EXPECT_LT(median_m, 0.02);
+  EXPECT_LT(max_m, 0.05) << "the ambiguous scans are the hypothesis the rules kept best";
 }
 
 TEST_F(LocaliseCliTest, WithoutAMapItIsRefusedAndNothingIsWritten) {

@@ -39,6 +39,7 @@ nlohmann::json HypothesesJson(const std::vector<Hypothesis>& hypotheses) {
                    {keys::kConfirmedInRow, h.confirmed_in_row},
                    {keys::kUnconfirmedInRow, h.unconfirmed_in_row},
                    {keys::kConfirmations, h.confirmations},
+                   {keys::kSearches, h.searches},
                    {keys::kCost, h.cost},
                    {keys::kValidated, h.validated}});
   return out;

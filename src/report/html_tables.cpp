@@ -88,6 +88,11 @@ std::string SummaryTable(const json& summary, const std::vector<IterationRow>& r
                                           {"wide_searches", "wide searches"},
                                           {"recoveries", "recoveries"},
                                           {"lost_at_end", "lost at the end"},
+                                          {"first_confirmed_scan", "first confirmed scan"},
+                                          {"seconds_to_confirm", "seconds to confirm"},
+                                          {"ambiguous_scans", "ambiguous scans"},
+                                          {"max_hypotheses", "hypotheses at most"},
+                                          {"scans_without_posture", "scans without a posture"},
                                           {"problem", "problem"}};
   for (const auto& [key, name] : kKnown)
     if (const auto it = summary.find(key); it != summary.end()) line(name, SummaryValue(*it));
@@ -210,7 +215,10 @@ std::string IterationsTable(const std::vector<IterationRow>& rows,
         << Td(std::string(row.status()) + (row.searched ? ", searched wide" : "") +
               (row.recovered ? ", recovered"
                : row.lost    ? ", lost"
-                             : ""))
+                             : "") +
+              (row.state.empty() ? std::string()
+                                 : ", " + row.state + " (" + std::to_string(row.hypotheses) +
+                                       (row.hypotheses == 1 ? " hypothesis)" : " hypotheses)")))
         << Td(row.flagged() ? row.reason : std::string())
         << Td(row.candidates.empty()
                   ? std::string()

@@ -220,6 +220,10 @@ IterationRow RowFrom(const json& record) {
   row.lost = OptionalBool(record, keys::kLost, "");
   row.recovered = OptionalBool(record, keys::kRecovered, "");
   row.searched = record.contains(keys::kSearch);
+  row.state = OptionalString(record, keys::kState, "");
+  row.posed = !record.contains(keys::kPosed) || OptionalBool(record, keys::kPosed, "");
+  if (record.contains(keys::kHypotheses))
+    row.hypotheses = RequiredArray(record, keys::kHypotheses, "", "an array of hypotheses").size();
   if (record.contains(keys::kProblems)) {
     for (const json& problem : RequiredArray(record, keys::kProblems, "", "an array of strings")) {
       if (!problem.is_string()) Fail(keys::kProblems, "an array of strings");

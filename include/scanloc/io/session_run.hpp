@@ -19,13 +19,13 @@
 namespace scanloc {
 
 struct SessionRunOptions {
-  std::size_t skip_scans = 0;               // start after this many scans of the source
   std::size_t max_scans = 0;                // stop after this many scans (0: all)
   bool progress = true;                     // a progress line on stderr every 2 s
   const std::atomic<bool>* stop = nullptr;  // when set (Ctrl-C), the loop ends early
   // When set, the scans CastIntoGrid picks (io/run_grid.hpp) are kept for an occupancy grid, at
   // the postures the session kept.
   std::optional<OccupancyGridOptions> occupancy_grid;
+  std::size_t skip_scans = 0;  // start after this many scans of the source
 };
 
 // What a run did, counted as it went.

@@ -70,6 +70,11 @@ struct IterationRow {
   bool lost = false;       // lost after this scan
   bool recovered = false;  // confirmed after being lost
   bool searched = false;   // the wide search added candidates
+  // A localisation on a saved map: its state after this scan and the hypotheses it held ("" and 0
+  // in a session).
+  std::string state;
+  std::size_t hypotheses = 0;
+  bool posed = true;  // false: no posture (a localisation still searching)
 
   // Localised but not validated: what the operator should look at.
   bool flagged() const { return !skipped && !first && !validated; }
