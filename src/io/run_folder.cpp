@@ -40,6 +40,7 @@ nlohmann::json HypothesesJson(const std::vector<Hypothesis>& hypotheses) {
                    {keys::kUnconfirmedInRow, h.unconfirmed_in_row},
                    {keys::kConfirmations, h.confirmations},
                    {keys::kSearches, h.searches},
+                   {keys::kHeld, h.held},
                    {keys::kCost, h.cost},
                    {keys::kValidated, h.validated}});
   return out;

@@ -14,11 +14,11 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Better first: validated at the last scan, then validated more scans in a row, then cheaper.
+// Better first: validated at the last scan, then validated more scans in all, then cheaper.
 bool Better(const Hypothesis& a, const Hypothesis& b) {
   if (a.validated != b.validated) return a.validated;
-  if (a.confirmed_in_row != b.confirmed_in_row) return a.confirmed_in_row > b.confirmed_in_row;
   if (a.confirmations != b.confirmations) return a.confirmations > b.confirmations;
+  if (a.confirmed_in_row != b.confirmed_in_row) return a.confirmed_in_row > b.confirmed_in_row;
   return a.cost < b.cost;
 }
 
@@ -210,13 +210,20 @@ void Localiser::Prune() {
       hypotheses_.front().unconfirmed_in_row >= o.lost_after_unconfirmed) {
     confirmed_ = false;
     lost_ = search_due_ = true;
+    hypotheses_.front().held = true;
     hypotheses_.front().unconfirmed_in_row = 0;
     hypotheses_.front().confirmed_in_row = 0;
   }
+  // A held posture goes only once another has been validated confirm_after scans in a row: a
+  // stretch the map explains badly is not taken for a robot carried elsewhere.
+  const bool competitor = std::any_of(hypotheses_.begin(), hypotheses_.end(), [&](const auto& h) {
+    return !h.held && h.confirmed_in_row >= o.confirm_after;
+  });
   const int patience = confirmed_ ? o.lost_after_unconfirmed : o.drop_after_unconfirmed;
   hypotheses_.erase(std::remove_if(hypotheses_.begin(), hypotheses_.end(),
                                    [&](const Hypothesis& h) {
-                                     return h.unconfirmed_in_row >= patience;
+                                     return h.unconfirmed_in_row >= patience &&
+                                            (!h.held || competitor);
                                    }),
                     hypotheses_.end());
   std::stable_sort(hypotheses_.begin(), hypotheses_.end(), Better);

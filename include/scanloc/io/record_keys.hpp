@@ -36,6 +36,7 @@ inline constexpr const char* kConfirmedInRow = "confirmed_in_row";
 inline constexpr const char* kUnconfirmedInRow = "unconfirmed_in_row";
 inline constexpr const char* kConfirmations = "confirmations";
 inline constexpr const char* kSearches = "searches";
+inline constexpr const char* kHeld = "held";
 inline constexpr const char* kState = "state";
 inline constexpr const char* kPosed = "posed";
 inline constexpr const char* kIndex = "index";

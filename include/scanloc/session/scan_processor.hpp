@@ -23,6 +23,9 @@ struct Hypothesis {
   double cost = 0.0;           // (3.11) at the last scan that localised it
   bool validated = false;      // at the last scan that localised it
   int searches = 0;  // global searches since it was found (the user's initial posture counts one)
+  // A posture confirmed before and since lost: held until another has been validated
+  // confirm_after scans in a row.
+  bool held = false;
 };
 
 // Everything the operator may want to know about one iteration.
