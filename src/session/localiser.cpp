@@ -47,7 +47,8 @@ bool MovedSince(const std::optional<Pose2D>& from, const Iteration& iteration,
 WideSearchOptions LocaliserOptions::DefaultGlobalSearch() {
   WideSearchOptions search;
   // Coarser than the recovery's search (the refinement converges from a cell and a degree off):
-  // 0.1 m cells, top blocks of 6.4 m, 1° headings; 0.56 s of CPU over ACES's 58 m × 57 m map.
+  // 0.1 m cells, top blocks of 6.4 m, 1° headings: 0.2–0.7 s over ACES's 58 m × 58 m map
+  // (docs/BENCHMARKS.md).
   search.field.resolution_m = 0.1;
   search.field.sigma_m = 0.15;
   search.field.levels = 7;

@@ -27,7 +27,7 @@ struct LocaliserOptions {
   int confirm_after = 3;
   // Until a posture is confirmed, the whole map is searched again once the odometry moved this
   // far or turned this much since the last search (a new view may show a place missed before).
-  double research_distance_m = 1.0;
+  double research_distance_m = 0.5;
   double research_turn_rad = 0.8;
   // A hypothesis not yet confirmed is discarded after this many unconfirmed scans in a row; a
   // confirmed posture is lost after lost_after_unconfirmed.
