@@ -97,11 +97,7 @@ Localiser::Localiser(const LocaliserConfig& config, LaserMounting mounting, Line
 
 IterationRecord Localiser::Process(const Iteration& iteration) {
   const auto start = std::chrono::steady_clock::now();
-  iteration.scan.CheckConsistent();
-  IterationRecord record;
-  record.index = count_;
-  record.timestamp_s = iteration.timestamp_s;
-  record.origin = iteration.origin;
+  IterationRecord record = BeginRecord(iteration, count_);
   record.max_expect_value_m = config_.localisation.validation.max_expect_value_m;
   if (iteration.odometry && last_odometry_) {
     const Pose2D increment = Between(*last_odometry_, *iteration.odometry);

@@ -70,11 +70,7 @@ Session::Session(const SessionConfig& config, LaserMounting mounting, LineMap li
 
 IterationRecord Session::Process(const Iteration& iteration) {
   const auto start = std::chrono::steady_clock::now();
-  iteration.scan.CheckConsistent();
-  IterationRecord record;
-  record.index = count_;
-  record.timestamp_s = iteration.timestamp_s;
-  record.origin = iteration.origin;
+  IterationRecord record = BeginRecord(iteration, count_);
   record.prediction = Predict(iteration);
   if (iteration.odometry && last_odometry_)
     drift_.Moved(Between(*last_odometry_, *iteration.odometry));

@@ -63,6 +63,10 @@ struct IterationRecord {
   const RankedCandidate* Kept() const { return localisation ? localisation->Kept() : nullptr; }
 };
 
+// The record of iteration number `index` as it starts: where and when it came from. Throws
+// std::invalid_argument when the scan is inconsistent (ranges and layout disagree).
+IterationRecord BeginRecord(const Iteration& iteration, std::size_t index);
+
 // Turns each iteration of a sequence into its record.
 class ScanProcessor {
  public:
