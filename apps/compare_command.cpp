@@ -53,22 +53,22 @@ void RegisterCompareCommand(CLI::App& app) {
       "localise a sequence with ground truth against the line map, a point map grown from "
       "nothing, and both; print each mode's validation rate, error against the truth, moments "
       "and time (or, with --runs, set run folders side by side)");
-  auto* sequence =
+  auto* sequence_option =
       command->add_option("--sequence", a->sequence_path, "native sequence with truth (.seq.jsonl)")
           ->check(CLI::ExistingFile);
-  auto* line_map =
+  auto* line_map_option =
       command
           ->add_option("--line-map", a->line_map_paths,
                        "line map; several files make one map (e.g. office.lines blinds.lines)")
           ->check(CLI::ExistingFile);
-  auto* runs = command
+  auto* runs_option = command
                    ->add_option("--runs", a->runs,
                                 "run folders of `session` or `localise` to set side by side; the "
                                 "postures of each are measured against the first's")
                    ->check(CLI::ExistingDirectory)
-                   ->excludes(sequence)
-                   ->excludes(line_map);
-  sequence->needs(line_map);
+                   ->excludes(sequence_option)
+                   ->excludes(line_map_option);
+  sequence_option->needs(line_map_option);
   command
       ->add_option("--modes", a->modes, "modes to run, in order: lines, points, both (default all)")
       ->delimiter(',')
@@ -76,8 +76,8 @@ void RegisterCompareCommand(CLI::App& app) {
   command->add_option("--max-iterations", a->max_iterations, "stop after this many (0: all)");
   command->add_flag("--json", a->json, "print one JSON object per mode instead of the table");
   a->config.Register(*command);
-  command->final_callback([a, runs] {
-    if (runs->count() > 0) {
+  command->final_callback([a, runs_option] {
+    if (runs_option->count() > 0) {
       PrintRunComparison(std::cout, CompareRuns(a->runs));
       return;
     }
