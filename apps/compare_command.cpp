@@ -61,13 +61,14 @@ void RegisterCompareCommand(CLI::App& app) {
           ->add_option("--line-map", a->line_map_paths,
                        "line map; several files make one map (e.g. office.lines blinds.lines)")
           ->check(CLI::ExistingFile);
-  auto* runs_option = command
-                   ->add_option("--runs", a->runs,
-                                "run folders of `session` or `localise` to set side by side; the "
-                                "postures of each are measured against the first's")
-                   ->check(CLI::ExistingDirectory)
-                   ->excludes(sequence_option)
-                   ->excludes(line_map_option);
+  auto* runs_option =
+      command
+          ->add_option("--runs", a->runs,
+                       "run folders of `session` or `localise` to set side by side; the "
+                       "postures of each are measured against the first's")
+          ->check(CLI::ExistingDirectory)
+          ->excludes(sequence_option)
+          ->excludes(line_map_option);
   sequence_option->needs(line_map_option);
   command
       ->add_option("--modes", a->modes, "modes to run, in order: lines, points, both (default all)")

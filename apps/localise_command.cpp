@@ -6,15 +6,16 @@
 #include <stdexcept>
 
 #include "commands.hpp"
-#include "sequence_command.hpp"
 #include "scanloc/session/localiser.hpp"
+#include "sequence_command.hpp"
 
 namespace scanloc::app {
 namespace {
 
 void Run(const SequenceArguments& a) {
   if (a.point_map_path.empty() && a.line_map_path.empty())
-    throw std::invalid_argument("localise needs a map: --point-map MAP.pcd, --line-map FILE, or both");
+    throw std::invalid_argument(
+        "localise needs a map: --point-map MAP.pcd, --line-map FILE, or both");
   Config config = a.config.Build();
   config.write_occupancy_grid = false;  // the map is not the run's: it is not rebuilt
   LocaliserConfig localiser;
@@ -36,8 +37,9 @@ void RegisterLocaliseCommand(CLI::App& app) {
       "localise",
       "localise a recorded sequence on a saved map (never changed), from an unknown start");
   arguments->Register(*command, "saved point map (PCD) to localise on");
-  command->add_option("--initial-pose", arguments->initial_pose,
-                      "the first posture x y theta when known (default: searched on the map)")
+  command
+      ->add_option("--initial-pose", arguments->initial_pose,
+                   "the first posture x y theta when known (default: searched on the map)")
       ->expected(3)
       ->check(PlausibleCoordinate());
   command->final_callback([arguments] { Run(*arguments); });

@@ -67,23 +67,22 @@ void PrintLocalisation(const SessionCounts& c) {
   if (c.first_confirmed)
     std::cout << "localise: posture confirmed at scan " << *c.first_confirmed << ", "
               << c.first_confirmed_timestamp_s - c.first_timestamp_s << " s into the log; "
-              << c.ambiguous << " scans ambiguous (at most " << c.max_hypotheses
-              << " hypotheses), " << c.unposed << " without a posture\n";
+              << c.ambiguous << " scans ambiguous (at most " << c.max_hypotheses << " hypotheses), "
+              << c.unposed << " without a posture\n";
   else
     std::cerr << "warning: no posture was ever confirmed on the map (" << c.ambiguous
-              << " scans ambiguous, at most " << c.max_hypotheses << " hypotheses, "
-              << c.unposed << " scans without a posture): trajectory.tum holds unconfirmed "
+              << " scans ambiguous, at most " << c.max_hypotheses << " hypotheses, " << c.unposed
+              << " scans without a posture): trajectory.tum holds unconfirmed "
               << "guesses only\n";
 }
 
 void PrintOutcome(const SessionRun& run, const nlohmann::json& summary, const RunFolder& folder,
                   const OccupancyGrid* grid) {
   const SessionCounts& c = run.counts;
-  std::cout << "run: " << c.iterations << " scans (" << c.localised << " localised, "
-            << c.validated << " validated, " << c.flagged << " flagged), map "
-            << summary["map_points"] << " points, " << c.wall_s << " s ("
-            << summary["times_real_time"].get<double>() << "× real time), peak "
-            << summary["peak_resident_mb"].get<double>() << " MB"
+  std::cout << "run: " << c.iterations << " scans (" << c.localised << " localised, " << c.validated
+            << " validated, " << c.flagged << " flagged), map " << summary["map_points"]
+            << " points, " << c.wall_s << " s (" << summary["times_real_time"].get<double>()
+            << "× real time), peak " << summary["peak_resident_mb"].get<double>() << " MB"
             << (c.interrupted ? ", interrupted" : "") << "\n";
   if (c.searches > 0 || c.lost_stretches > 0)
     std::cout << "lost " << c.lost_stretches << " times, " << c.searches << " wide searches, "
@@ -148,7 +147,7 @@ void SequenceArguments::Register(CLI::App& command, const std::string& point_map
 
 void RunSequence(const SequenceArguments& a, Config config, const ProcessorMaker& make) {
   RefuseNonEmptyFolder(a.out_dir, a.force);  // before anything is read (RunFolder checks again)
-  CarmenOptions carmen = config.log;  // --laser-offset and --raw-odometry override it
+  CarmenOptions carmen = config.log;         // --laser-offset and --raw-odometry override it
   if (a.laser_offset_m) carmen.laser_offset_m = a.laser_offset_m;
   if (a.raw_odometry) carmen.repair_reversed_odometry = false;
   RosBagOptions bag = a.bag;

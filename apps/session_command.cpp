@@ -4,8 +4,8 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "sequence_command.hpp"
 #include "scanloc/session/session.hpp"
+#include "sequence_command.hpp"
 
 namespace scanloc::app {
 namespace {
@@ -17,9 +17,8 @@ void Run(const SequenceArguments& a) {
     config.Validate();  // the ranges of the config, e.g. |yaw| ≤ 2π
   }
   RunSequence(a, config, [](const Config& c, LineMap lines, PointMap points) {
-    return std::make_unique<Session>(
-        SessionConfig{c.session, {c.scoring, c.validation, c.refiner}}, c.mounting,
-        std::move(lines), std::move(points));
+    return std::make_unique<Session>(SessionConfig{c.session, {c.scoring, c.validation, c.refiner}},
+                                     c.mounting, std::move(lines), std::move(points));
   });
 }
 
@@ -30,8 +29,9 @@ void RegisterSessionCommand(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "session", "localise a whole recorded sequence while growing the map from its scans");
   arguments->Register(*command, "saved point map (PCD) to start from");
-  command->add_option("--initial-pose", arguments->initial_pose,
-                      "first posture x y theta (default 0 0 0)")
+  command
+      ->add_option("--initial-pose", arguments->initial_pose,
+                   "first posture x y theta (default 0 0 0)")
       ->expected(3)
       ->check(PlausibleCoordinate());
   command->final_callback([arguments] { Run(*arguments); });

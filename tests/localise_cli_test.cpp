@@ -37,16 +37,16 @@ class LocaliseCliTest : public testing::TemporaryDirTest {
 };
 
 TEST_F(LocaliseCliTest, FromNoPostureTheClassroomIsAmbiguousThenFollowsTheSessionWithin2cm) {
-  const auto session = testing::RunScanloc(
-      {"session", "--log", Classroom("classroom.seq.jsonl"), "--line-map",
-       Classroom("classroom.lines"), "--initial-pose", "1.126", "3.112", "0.0463", "--out",
-       dir_ + "/session", "--quiet"},
-      dir_);
+  const auto session =
+      testing::RunScanloc({"session", "--log", Classroom("classroom.seq.jsonl"), "--line-map",
+                           Classroom("classroom.lines"), "--initial-pose", "1.126", "3.112",
+                           "0.0463", "--out", dir_ + "/session", "--quiet"},
+                          dir_);
   ASSERT_TRUE(session.exited && session.exit_code == 0) << session;
-  const auto localise = testing::RunScanloc(
-      {"localise", "--log", Classroom("classroom.seq.jsonl"), "--line-map",
-       Classroom("classroom.lines"), "--out", dir_ + "/localise", "--quiet"},
-      dir_);
+  const auto localise =
+      testing::RunScanloc({"localise", "--log", Classroom("classroom.seq.jsonl"), "--line-map",
+                           Classroom("classroom.lines"), "--out", dir_ + "/localise", "--quiet"},
+                          dir_);
   ASSERT_TRUE(localise.exited && localise.exit_code == 0) << localise;
   EXPECT_NE(localise.out.find("localise: posture confirmed at scan"), std::string::npos)
       << localise;
@@ -70,9 +70,11 @@ TEST_F(LocaliseCliTest, FromNoPostureTheClassroomIsAmbiguousThenFollowsTheSessio
   EXPECT_TRUE(testing::Contains(page, "first confirmed scan</th><td>" + std::to_string(confirmed)));
 }
 
-TEST_F(LocaliseCliTest, CompareSetsALocaliseRunBesideTheSessionWithTheDistanceBetweenTheirPostures) {
-  const std::vector<std::string> common{"--log", Classroom("classroom.seq.jsonl"), "--line-map",
-                                        Classroom("classroom.lines"), "--quiet", "--out"};
+TEST_F(LocaliseCliTest,
+       CompareSetsALocaliseRunBesideTheSessionWithTheDistanceBetweenTheirPostures) {
+  const std::vector<std::string> common{"--log",      Classroom("classroom.seq.jsonl"),
+                                        "--line-map", Classroom("classroom.lines"),
+                                        "--quiet",    "--out"};
   auto words = [&](const std::string& command, const std::string& out) {
     std::vector<std::string> w{command};
     w.insert(w.end(), common.begin(), common.end());
@@ -83,8 +85,8 @@ TEST_F(LocaliseCliTest, CompareSetsALocaliseRunBesideTheSessionWithTheDistanceBe
   session.insert(session.end(), {"--initial-pose", "1.126", "3.112", "0.0463"});
   ASSERT_EQ(testing::RunScanloc(session, dir_).exit_code, 0);
   ASSERT_EQ(testing::RunScanloc(words("localise", "localise"), dir_).exit_code, 0);
-  const auto compare = testing::RunScanloc(
-      {"compare", "--runs", dir_ + "/session", dir_ + "/localise"}, dir_);
+  const auto compare =
+      testing::RunScanloc({"compare", "--runs", dir_ + "/session", dir_ + "/localise"}, dir_);
   ASSERT_TRUE(compare.exited && compare.exit_code == 0) << compare;
   // The localise run's line: line map, confirmed at a scan, then the median / max distance.
   std::istringstream lines(compare.out);

@@ -81,8 +81,9 @@ TEST(Localiser, TwoAlikeRoomsStayAmbiguousUntilTheBoxTellsThemApartThenTheRightO
   // In the western room's west half: north 2.7 m, a quarter turn, then east through the gap (the
   // eastern room's box comes into sight past x ≈ 4 m, from scan 90 on).
   const auto path = [](int i) {
-    return i <= 54 ? Pose2D{0.05, 0.0, 0.0} : i <= 70 ? Pose2D{0.0, 0.0, -M_PI / 32.0}
-                                                     : Pose2D{0.05, 0.0, 0.0};
+    return i <= 54   ? Pose2D{0.05, 0.0, 0.0}
+           : i <= 70 ? Pose2D{0.0, 0.0, -M_PI / 32.0}
+                     : Pose2D{0.05, 0.0, 0.0};
   };
   const Drive drive = DriveThrough(world, {2.0, 1.5, M_PI / 2.0}, 150, 20.0, 0.0, -1, {}, path);
   Localiser localiser(DefaultConfig(), {}, world, PointMap{});
@@ -120,7 +121,8 @@ TEST(Localiser, FindsItselfOnTheClassroomFromNoInitialPostureWithinFiveCentimetr
   for (std::size_t i = 0; i < drive.iterations.size(); ++i) {
     const IterationRecord r = localiser.Process(drive.iterations[i]);
     if (r.state == "confirmed" && first_confirmed < 0) first_confirmed = static_cast<int>(i);
-    if (first_confirmed >= 0) worst_after_m = std::max(worst_after_m, ErrorM(r.T_world_robot, drive.truth[i]));
+    if (first_confirmed >= 0)
+      worst_after_m = std::max(worst_after_m, ErrorM(r.T_world_robot, drive.truth[i]));
   }
   ASSERT_GE(first_confirmed, 0);
   EXPECT_LE(first_confirmed, 40);  // a second search after 0.5 m of travel confirms it
@@ -133,8 +135,8 @@ TEST(Localiser, CarriedElsewhereItIsLostThenConfirmsTheNewPlaceWithinThirtyScans
   world.segments.push_back({{2.4, 0.6}, {3.6, 0.6}});
   AddBox(world, 0.3, 5.5, 1.5, 6.7);
   const int kidnap_at = 60;
-  const Drive drive = DriveThrough(world, {1.5, 2.0, 0.3}, 140, 20.0, 0.02, kidnap_at,
-                                   Pose2D{4.5, 4.5, -2.0});
+  const Drive drive =
+      DriveThrough(world, {1.5, 2.0, 0.3}, 140, 20.0, 0.02, kidnap_at, Pose2D{4.5, 4.5, -2.0});
   LocaliserConfig config = DefaultConfig();
   config.initial_pose = drive.truth.front();
   Localiser localiser(config, {}, world, PointMap{});

@@ -152,7 +152,8 @@ void VisitSession(C& c, V& v) {
   v("session.prediction_disproved_cost_ratio", s.prediction_disproved_cost_ratio, Bounds{1, 100},
     "... unless the prediction's cost (3.11) exceeds this many times the refinement's");
   v("session.learned_max_expect_value", s.learned_max_expect_value,
-    "rule 2's E_max is the laser signature's bound (validation's is its prior); false: recorded only");
+    "rule 2's E_max is the laser signature's bound (validation's is its prior); false: recorded "
+    "only");
   v("session.signature_window", s.signature.window, Bounds{0, 100000},
     "laser signature: the confirmed scans it remembers; 0: nothing learned");
   v("session.signature_min_samples", s.signature.min_samples, Bounds{1, 100000},
@@ -198,7 +199,8 @@ template <class C, class V>
 void VisitRecovery(C& c, V& v) {
   auto& r = c.session.recovery;
   v("recovery.lost_after_unconfirmed", r.lost_after_unconfirmed, Bounds{0, 1e6},
-    "localised scans in a row not confirmed before the session is lost and searches wide; 0: never");
+    "localised scans in a row not confirmed before the session is lost and searches wide; 0: "
+    "never");
   v("recovery.min_half_width_m", r.min_half_width_m, Bounds{0, 1e3},
     "wide search: the window's half width at least, m ...");
   v("recovery.translation_error_per_m", r.translation_error_per_m, Bounds{0, 10},
@@ -232,7 +234,8 @@ void VisitLocalise(C& c, V& v) {
   v("localise.research_distance_m", l.research_distance_m, Bounds{0, 1e3},
     "until a posture is confirmed, the map is searched again after the odometry moved this far, "
     "m ...");
-  v("localise.research_turn_rad", l.research_turn_rad, Bounds{0, 2 * M_PI}, "... or turned this, rad");
+  v("localise.research_turn_rad", l.research_turn_rad, Bounds{0, 2 * M_PI},
+    "... or turned this, rad");
   v("localise.drop_after_unconfirmed", l.drop_after_unconfirmed, Bounds{1, 1e6},
     "a hypothesis not yet confirmed is dropped after this many unconfirmed scans in a row");
   v("localise.lost_after_unconfirmed", l.lost_after_unconfirmed, Bounds{1, 1e6},

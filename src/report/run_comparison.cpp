@@ -86,10 +86,11 @@ std::vector<RunSide> CompareRuns(const std::vector<std::string>& directories) {
 }
 
 void PrintRunComparison(std::ostream& out, const std::vector<RunSide>& sides) {
-  out << std::left << std::setw(28) << "run" << std::setw(11) << "map" << std::right
-      << std::setw(7) << "scans" << std::setw(10) << "validated" << std::setw(11) << "confirmed"
-      << std::setw(9) << "EV [cm]" << std::setw(12) << "match ratio" << std::setw(10) << "ms/scan"
-      << std::setw(22) << "vs first: median/max" << "\n";
+  out << std::left << std::setw(28) << "run" << std::setw(11) << "map" << std::right << std::setw(7)
+      << "scans" << std::setw(10) << "validated" << std::setw(11) << "confirmed" << std::setw(9)
+      << "EV [cm]" << std::setw(12) << "match ratio" << std::setw(10) << "ms/scan" << std::setw(22)
+      << "vs first: median/max"
+      << "\n";
   out << std::fixed;
   for (const RunSide& s : sides) {
     const std::string name =
@@ -97,9 +98,9 @@ void PrintRunComparison(std::ostream& out, const std::vector<RunSide>& sides) {
     out << std::left << std::setw(28) << name << std::setw(11) << s.map << std::right
         << std::setw(7) << s.scans << std::setw(10) << s.validated << std::setw(11)
         << (s.first_confirmed ? "scan " + std::to_string(*s.first_confirmed) : std::string("—"))
-        << std::setw(9) << std::setprecision(2) << 100.0 * s.mean_expect_value_m
-        << std::setw(12) << std::setprecision(3) << s.mean_match_ratio << std::setw(10)
-        << std::setprecision(1) << s.mean_iteration_ms;
+        << std::setw(9) << std::setprecision(2) << 100.0 * s.mean_expect_value_m << std::setw(12)
+        << std::setprecision(3) << s.mean_match_ratio << std::setw(10) << std::setprecision(1)
+        << s.mean_iteration_ms;
     if (s.median_distance_m)
       out << std::setw(13) << std::setprecision(3) << *s.median_distance_m << " / "
           << std::setprecision(3) << *s.max_distance_m << " m";

@@ -31,9 +31,9 @@ struct Config {
   LaserMounting mounting;           // mounting: {"x_m", "y_m", "yaw_rad"} of the laser on the robot
   // refinement: {"method", "ceres": {...}, "error_descent": {...}, "icp": {...}}
   RefinerOptions refiner;
-  SessionOptions session;  // session
+  SessionOptions session;     // session
   LocaliserOptions localise;  // localise: the global search and the hypotheses (scanloc localise)
-  CarmenOptions log;       // log: how CARMEN logs are read
+  CarmenOptions log;          // log: how CARMEN logs are read
   // occupancy_grid: the map_server grid (map.pgm + map.yaml) a session writes into its run folder
   bool write_occupancy_grid = true;
   OccupancyGridOptions occupancy_grid;

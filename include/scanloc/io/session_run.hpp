@@ -54,8 +54,7 @@ bool MostlyUnconfirmed(const SessionCounts& counts);
 
 // Builds the session when the first scan has been read: a source's mounting is final then
 // (CARMEN's PARAM lines precede the first scan).
-using SessionFactory =
-    std::function<std::unique_ptr<ScanProcessor>(const IterationSource& source)>;
+using SessionFactory = std::function<std::unique_ptr<ScanProcessor>(const IterationSource& source)>;
 
 struct SessionRun {
   std::unique_ptr<ScanProcessor> session;  // null when the source had no scan

@@ -17,7 +17,7 @@ struct RunSide {
   std::string map;  // the inputs it localised on: "line map", "point map", "both", "grown"
   std::size_t scans = 0, localised = 0, validated = 0, posed = 0;
   std::optional<std::size_t> first_confirmed;  // localise runs
-  double mean_expect_value_m = 0.0;  // over the validated scans' final Likelihood Tests
+  double mean_expect_value_m = 0.0;            // over the validated scans' final Likelihood Tests
   double mean_match_ratio = 0.0;
   double mean_iteration_ms = 0.0;
   // Against the first run, over the scans both gave a posture (by timestamp): median and maximum

@@ -14,10 +14,10 @@
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/maps/point_map.hpp"
 #include "scanloc/session/iteration.hpp"
-#include "scanloc/session/scan_processor.hpp"
 #include "scanloc/session/localisation.hpp"
 #include "scanloc/session/map_extension.hpp"
 #include "scanloc/session/recovery.hpp"
+#include "scanloc/session/scan_processor.hpp"
 
 namespace scanloc {
 
