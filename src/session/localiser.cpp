@@ -105,7 +105,8 @@ IterationRecord Localiser::Process(const Iteration& iteration) {
   }
   if (!hypotheses_.empty()) record.prediction = hypotheses_.front().T_world_robot;
   const bool search = SearchDue(iteration);
-  if (!hypotheses_.empty() && (search || MovedSince(last_localised_odometry_, iteration, config_.session))) {
+  if (!hypotheses_.empty() &&
+      (search || MovedSince(last_localised_odometry_, iteration, config_.session))) {
     Track(record, iteration);
   } else if (!search) {
     record.skipped = true;
@@ -124,8 +125,9 @@ IterationRecord Localiser::Process(const Iteration& iteration) {
 // The whole map is searched when no hypothesis is held, when a confirmed posture was just lost,
 // and, until one is confirmed, each time the odometry moved or turned enough since the last search.
 bool Localiser::SearchDue(const Iteration& iteration) const {
-  if (hypotheses_.empty() || search_due_ || !last_search_odometry_ || !iteration.odometry)
-    return true;
+  if (hypotheses_.empty() || search_due_) return true;
+  // Without odometry there is no travel to count: search until a posture is confirmed.
+  if (!last_search_odometry_ || !iteration.odometry) return !confirmed_;
   const Pose2D since = Between(*last_search_odometry_, *iteration.odometry);
   const LocaliserOptions& o = config_.localiser;
   return !confirmed_ && (std::hypot(since.x_m, since.y_m) >= o.research_distance_m ||
@@ -149,8 +151,8 @@ void Localiser::Search(IterationRecord& record, const Iteration& iteration) {
     record.verdict = Verdict::kNoValidPairs;
     return;
   }
-  LocalisationResult result = Localise(View(), scan, candidates, mounting_, config_.localisation,
-                                       RefinePolicy::kAll);
+  LocalisationResult result =
+      Localise(View(), scan, candidates, mounting_, config_.localisation, RefinePolicy::kAll);
   for (const RankedCandidate& refined : result.refined)
     if (refined.verdict == Verdict::kValid)
       hypotheses_.push_back({refined.T_world_robot, 1, 0, 1, refined.cost, true});
@@ -163,17 +165,15 @@ void Localiser::Search(IterationRecord& record, const Iteration& iteration) {
 // Every hypothesis localised from its own prediction; rule 3 then judges them against each other
 // (one far costlier than the best held is not validated). The record keeps the best one's.
 void Localiser::Track(IterationRecord& record, const Iteration& iteration) {
-  const bool turning =
-      !iteration.odometry || !last_localised_odometry_ ||
-      std::abs(Between(*last_localised_odometry_, *iteration.odometry).yaw_rad) >
-          config_.session.heading_candidates_min_turn_rad;
+  const bool turning = !iteration.odometry || !last_localised_odometry_ ||
+                       std::abs(Between(*last_localised_odometry_, *iteration.odometry).yaw_rad) >
+                           config_.session.heading_candidates_min_turn_rad;
   std::vector<LocalisationResult> results;
   for (Hypothesis& h : hypotheses_) {
     const auto candidates =
         PredictionCandidates(h.T_world_robot, {}, turning, mounting_, config_.session);
-    results.push_back(Localise(View(), iteration.scan, candidates, mounting_,
-                               config_.localisation, RefinePolicy::kBestValid,
-                               config_.session.max_refined_candidates));
+    results.push_back(Localise(View(), iteration.scan, candidates, mounting_, config_.localisation,
+                               RefinePolicy::kBestValid, config_.session.max_refined_candidates));
     if (const RankedCandidate* kept = results.back().Kept()) {
       h.T_world_robot = kept->T_world_robot;
       h.cost = kept->cost;
@@ -184,7 +184,8 @@ void Localiser::Track(IterationRecord& record, const Iteration& iteration) {
   for (const Hypothesis& h : hypotheses_)
     if (h.validated) best_cost = std::min(best_cost, h.cost);
   for (Hypothesis& h : hypotheses_) {
-    h.validated = h.validated && h.cost <= config_.localisation.validation.max_cost_ratio * best_cost;
+    h.validated =
+        h.validated && h.cost <= config_.localisation.validation.max_cost_ratio * best_cost;
     Count(h);
   }
   std::vector<std::size_t> order(hypotheses_.size());
