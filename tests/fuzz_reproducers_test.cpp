@@ -67,10 +67,13 @@ TEST(FuzzReproducers, ASequenceHeaderWithANonIntegerVersionIsAParseError) {
   }
 }
 
-// C5, C6, C7: PCDs with huge coordinates, a header announcing gigabytes, a COUNT that wraps.
+// C5, C6, C7: PCDs with huge coordinates, a header announcing gigabytes, a COUNT that wraps;
+// C9: headers PCL reads otherwise than scanloc's check (a repeated COUNT, a statement after DATA).
 TEST(FuzzReproducers, AbsurdPcdsAreRefusedWithARuntimeError) {
   for (const char* name : {"huge-coordinate-cell-key-overflow", "header-makes-pcl-allocate-3.5-GB",
-                           "hand-made-field-count-wraps-point-step.pcd"}) {
+                           "hand-made-field-count-wraps-point-step.pcd",
+                           "hand-made-repeated-count-makes-pcl-allocate-2.6-GB.pcd",
+                           "hand-made-statement-after-data.pcd"}) {
     SCOPED_TRACE(name);
     EXPECT_THROW(LoadPointMapPcd(kCrashes + "pcd/" + name), std::runtime_error);
   }

@@ -22,7 +22,9 @@ TEST(MapExtension, APointSeenThroughIsCarvedBeforeTheScanIsInserted) {
   for (int pass = 0; pass < 3; ++pass) carved += ExtendMap(map, scan, T_world_laser, {});
   EXPECT_GE(carved, 1u);
   for (std::size_t i = 0; i < map.size(); ++i)
-    if (map.alive(i)) EXPECT_GT((map.point(i) - Eigen::Vector2d(5.0, 3.0)).norm(), 0.5);
+    if (map.alive(i)) {
+      EXPECT_GT((map.point(i) - Eigen::Vector2d(5.0, 3.0)).norm(), 0.5);
+    }
   EXPECT_GT(map.live_size(), before);  // the room's walls went in
 }
 

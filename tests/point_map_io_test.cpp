@@ -336,6 +336,48 @@ TEST_F(PointMapIoTest, HeaderWithInsaneSizeCountOrDimensionsIsRefusedWithItsLine
   }
 }
 
+// PCL matches statements by prefix, lets a repeated statement override the first and reads on
+// after DATA; it allocates for POINTS as it parses. The fuzzer's 373 GB allocation came from a
+// header PCL read differently from scanloc's check: such headers are now refused, with their line.
+TEST_F(PointMapIoTest, HeaderThatPclWouldReadDifferentlyIsRefusedWithItsLine) {
+  const std::string fields = "VERSION 0.7\nFIELDS x y\nSIZE 4 4\nTYPE F F\n";
+  const std::string body = "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n1 2\n";
+  const std::vector<std::pair<std::string, std::size_t>> cases = {
+      {fields + "COUNT 1 1\nPOINTSX 4000000000\n" + body, 6},  // a prefix PCL takes
+      {fields + "COUNT 4096 4096\nCOUNT 1 1\n" + body, 6},     // a repeated statement
+      {fields + "COUNT 1 1\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n"
+                "POINTS 4000000000\n1 2\n",
+       10},  // a statement after DATA
+      {fields + "COUNT 1 1\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n"
+                "# a comment\n\n  SIZE 8 8\n1 2\n",
+       12},                                          // after a comment
+      {fields + "COUNT 1 1\nWIDTH 1#\n" + body, 6},  // '#' inside a statement
+      {fields + "COUNT 1\v1\n" + body, 5},           // a control character
+      {fields + "COUNT 1 1\n \r\n" + body, 6},       // a blank line
+      {fields + "COUNT 1 1\nWEIGHT 1\n" + body, 6},  // no statement at all
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const std::string name = "ambiguous-" + std::to_string(i) + ".pcd";
+    WriteText(name, cases[i].first);
+    try {
+      LoadPointMapPcd(PathOf(name));
+      ADD_FAILURE() << name << " loaded";
+    } catch (const ParseError& error) {
+      EXPECT_EQ(error.file(), PathOf(name));
+      EXPECT_EQ(error.line(), cases[i].second) << name << ": " << error.what();
+    }
+  }
+}
+
+TEST_F(PointMapIoTest, CommentsEmptyLinesAndCrlfInTheHeaderStillLoad) {
+  WriteText("comments.pcd",
+            "# .PCD v0.7 - Point Cloud Data file format\r\nVERSION 0.7\r\n\nFIELDS x y\r\n"
+            "SIZE 4 4\r\nTYPE F F\r\nCOUNT 1 1\r\nWIDTH 2\r\nHEIGHT 1\r\n"
+            "VIEWPOINT 0 0 0 1 0 0 0\r\nPOINTS 2\r\nDATA ascii\r\n1 2\n3 4\n");
+  const PointMap map = LoadPointMapPcd(PathOf("comments.pcd"), PointMapOptions{});
+  EXPECT_EQ(map.live_size(), 2u);
+}
+
 TEST_F(PointMapIoTest, PointBeyondAMillionMetresIsRefused) {
   WriteText("far.pcd",
             "VERSION 0.7\nFIELDS x y\nSIZE 8 8\nTYPE F F\nCOUNT 1 1\n"
