@@ -1,0 +1,194 @@
+#include "scanloc/graph/pose_graph.hpp"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace scanloc {
+namespace {
+
+// An angle wrapped to [-π, π) in a form Ceres' jets can differentiate.
+template <typename T>
+T WrapAngle(const T& angle_rad) {
+  const T two_pi(2.0 * M_PI);
+  return angle_rad - two_pi * ceres::floor((angle_rad + T(M_PI)) / two_pi);
+}
+
+// Yaw lives on the circle: a step is added and the sum wrapped, so the solver never sees the
+// jump at ±π.
+struct YawPlus {
+  template <typename T>
+  bool Plus(const T* yaw, const T* delta, T* result) const {
+    *result = WrapAngle(*yaw + *delta);
+    return true;
+  }
+  template <typename T>
+  bool Minus(const T* to, const T* from, T* result) const {
+    *result = WrapAngle(*to - *from);
+    return true;
+  }
+};
+
+// The whitened difference between an edge's measured relative posture and the one its two nodes
+// give now, in the `from` node's frame.
+class RelativePostureError {
+ public:
+  RelativePostureError(const Pose2D& measured, const Eigen::Matrix3d& sqrt_information)
+      : measured_(measured), sqrt_information_(sqrt_information) {}
+
+  template <typename T>
+  bool operator()(const T* from_xy, const T* from_yaw, const T* to_xy, const T* to_yaw,
+                  T* residual) const {
+    const T c = ceres::cos(*from_yaw), s = ceres::sin(*from_yaw);
+    const T dx = to_xy[0] - from_xy[0], dy = to_xy[1] - from_xy[1];
+    Eigen::Matrix<T, 3, 1> error;
+    error << c * dx + s * dy - T(measured_.x_m), -s * dx + c * dy - T(measured_.y_m),
+        WrapAngle(*to_yaw - *from_yaw - T(measured_.yaw_rad));
+    Eigen::Map<Eigen::Matrix<T, 3, 1>> whitened(residual);
+    whitened = sqrt_information_.template cast<T>() * error;
+    return true;
+  }
+
+ private:
+  Pose2D measured_;
+  Eigen::Matrix3d sqrt_information_;
+};
+
+// The upper factor U of Ω = UᵀU, or an empty optional-like zero matrix when Ω is not symmetric
+// positive definite.
+bool SquareRootInformation(const Eigen::Matrix3d& information, Eigen::Matrix3d& root) {
+  if (!information.allFinite() || !information.isApprox(information.transpose(), 1e-9))
+    return false;
+  const Eigen::LLT<Eigen::Matrix3d> llt(information);
+  if (llt.info() != Eigen::Success) return false;
+  root = llt.matrixU();
+  return root.allFinite() && root.diagonal().minCoeff() > 0.0;
+}
+
+bool IsFinite(const Pose2D& pose) {
+  return std::isfinite(pose.x_m) && std::isfinite(pose.y_m) && std::isfinite(pose.yaw_rad);
+}
+
+}  // namespace
+
+const char* EdgeKindName(EdgeKind kind) {
+  switch (kind) {
+    case EdgeKind::kSequential:
+      return "sequential";
+    case EdgeKind::kOdometry:
+      return "odometry";
+    case EdgeKind::kClosure:
+      return "closure";
+  }
+  return "unknown";
+}
+
+std::size_t PoseGraph::AddNode(const Pose2D& T_world_node) {
+  if (!IsFinite(T_world_node)) throw std::invalid_argument("pose graph node is not finite");
+  nodes_.push_back(T_world_node.Normalized());
+  return nodes_.size() - 1;
+}
+
+void PoseGraph::SetNode(std::size_t index, const Pose2D& T_world_node) {
+  if (index >= nodes_.size())
+    throw std::invalid_argument("no pose graph node " + std::to_string(index));
+  if (!IsFinite(T_world_node)) throw std::invalid_argument("pose graph node is not finite");
+  nodes_[index] = T_world_node.Normalized();
+}
+
+void PoseGraph::AddEdge(const PoseGraphEdge& edge) {
+  const std::string name =
+      "pose graph edge " + std::to_string(edge.from) + " → " + std::to_string(edge.to);
+  if (edge.from >= nodes_.size() || edge.to >= nodes_.size())
+    throw std::invalid_argument(name + " names a node the graph does not have (" +
+                                std::to_string(nodes_.size()) + " nodes)");
+  if (edge.from == edge.to) throw std::invalid_argument(name + " links a node to itself");
+  if (!IsFinite(edge.T_from_to)) throw std::invalid_argument(name + " is not finite");
+  Eigen::Matrix3d root;
+  if (!SquareRootInformation(edge.information, root))
+    throw std::invalid_argument(name + ": information is not symmetric positive definite");
+  edges_.push_back(edge);
+}
+
+double PoseGraph::SquaredError(const PoseGraphEdge& edge) const {
+  const Pose2D now = Between(nodes_.at(edge.from), nodes_.at(edge.to));
+  const Eigen::Vector3d error(now.x_m - edge.T_from_to.x_m, now.y_m - edge.T_from_to.y_m,
+                              NormalizeAngle(now.yaw_rad - edge.T_from_to.yaw_rad));
+  return error.dot(edge.information * error);
+}
+
+PoseGraphSummary PoseGraph::Optimise(const PoseGraphOptions& options) {
+  if (options.fixed_node >= nodes_.size() && !nodes_.empty())
+    throw std::invalid_argument("fixed pose graph node " + std::to_string(options.fixed_node) +
+                                " out of range (" + std::to_string(nodes_.size()) + " nodes)");
+  PoseGraphSummary summary;
+  summary.converged = true;
+  if (edges_.empty()) return summary;
+  for (;;) {
+    Solve(options, summary);
+    if (options.closure_rejection_chi2 <= 0.0) break;
+    PoseGraphEdge* worst = nullptr;
+    double worst_chi2 = options.closure_rejection_chi2;
+    for (PoseGraphEdge& edge : edges_) {
+      if (edge.kind != EdgeKind::kClosure || !edge.active) continue;
+      const double chi2 = SquaredError(edge);
+      if (chi2 > worst_chi2) {
+        worst = &edge;
+        worst_chi2 = chi2;
+      }
+    }
+    if (worst == nullptr) break;
+    worst->active = false;
+    ++summary.closures_rejected;
+  }
+  return summary;
+}
+
+void PoseGraph::Solve(const PoseGraphOptions& options, PoseGraphSummary& summary) {
+  std::vector<double> xy(2 * nodes_.size()), yaw(nodes_.size());
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    xy[2 * i] = nodes_[i].x_m;
+    xy[2 * i + 1] = nodes_[i].y_m;
+    yaw[i] = nodes_[i].yaw_rad;
+  }
+  ceres::Problem problem;
+  for (const PoseGraphEdge& edge : edges_) {
+    if (!edge.active) continue;
+    Eigen::Matrix3d root;
+    SquareRootInformation(edge.information, root);
+    auto* cost = new ceres::AutoDiffCostFunction<RelativePostureError, 3, 2, 1, 2, 1>(
+        new RelativePostureError(edge.T_from_to, root));
+    ceres::LossFunction* loss = nullptr;
+    if (edge.kind == EdgeKind::kClosure && options.closure_loss_scale > 0.0)
+      loss = new ceres::HuberLoss(options.closure_loss_scale);
+    problem.AddResidualBlock(cost, loss, &xy[2 * edge.from], &yaw[edge.from], &xy[2 * edge.to],
+                             &yaw[edge.to]);
+  }
+  for (std::size_t i = 0; i < nodes_.size(); ++i)
+    if (problem.HasParameterBlock(&yaw[i]))
+      problem.SetManifold(&yaw[i], new ceres::AutoDiffManifold<YawPlus, 1, 1>);
+  const std::size_t gauge = options.fixed_node;
+  if (problem.HasParameterBlock(&xy[2 * gauge])) {
+    problem.SetParameterBlockConstant(&xy[2 * gauge]);
+    problem.SetParameterBlockConstant(&yaw[gauge]);
+  }
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  solver.max_num_iterations = options.max_iterations;
+  solver.num_threads = 1;
+  solver.logging_type = ceres::SILENT;
+  ceres::Solver::Summary result;
+  ceres::Solve(solver, &problem, &result);
+  if (summary.solves++ == 0) summary.initial_cost = result.initial_cost;
+  summary.converged = result.termination_type == ceres::CONVERGENCE;
+  summary.iterations += static_cast<int>(result.iterations.size());
+  summary.final_cost = result.final_cost;
+  for (std::size_t i = 0; i < nodes_.size(); ++i)
+    nodes_[i] = Pose2D(xy[2 * i], xy[2 * i + 1], yaw[i]).Normalized();
+}
+
+}  // namespace scanloc
