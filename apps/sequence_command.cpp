@@ -180,6 +180,10 @@ void RunSequence(const SequenceArguments& a, Config config, const ProcessorMaker
   const PointMap empty_map(config.point_map);
   std::optional<OccupancyGrid> grid;
   if (run.grid && run.grid->scans() > 0) grid = run.grid->Build();
+  if (run.session) {
+    folder.Correct(run.session->CorrectedPostures());
+    if (run.session->pose_graph()) folder.WriteGraph(*run.session->pose_graph());
+  }
   folder.Finish(run.session ? run.session->point_map() : empty_map, summary,
                 grid ? &*grid : nullptr);
   PrintOutcome(run, summary, folder, grid ? &*grid : nullptr);

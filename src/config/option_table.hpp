@@ -227,6 +227,53 @@ void VisitRecovery(C& c, V& v) {
 }
 
 template <class C, class V>
+void VisitLoopClosure(C& c, V& v) {
+  auto& l = c.session.loop_closure;
+  v("loop_closure.enabled", l.enabled,
+    "scans that extend the map become pose graph nodes; closures with old nodes correct them and "
+    "the map");
+  v("loop_closure.min_path_m", l.min_path_m, Bounds{0, 1e6},
+    "a node may close a loop once the path driven since it exceeds this, m");
+  v("loop_closure.local_map_radius_m", l.local_map_radius_m, Bounds{1e-3, 1e3},
+    "old nodes within this of the current posture render the map a closure is matched on, m");
+  v("loop_closure.min_local_nodes", l.min_local_nodes, Bounds{1, 1e6},
+    "old nodes needed near before a closure is tried");
+  v("loop_closure.max_local_nodes", l.max_local_nodes, Bounds{1, 1e6},
+    "... of which at most this many, the nearest, render that map");
+  v("loop_closure.attempt_every_nodes", l.attempt_every_nodes, Bounds{1, 1e6},
+    "a closure is tried at every this many new nodes");
+  v("loop_closure.min_half_width_m", l.min_half_width_m, Bounds{0, 1e3},
+    "closure search: the window's half width at least, m ...");
+  v("loop_closure.translation_error_per_m", l.translation_error_per_m, Bounds{0, 10},
+    "... plus this per metre driven since the old node ...");
+  v("loop_closure.max_half_width_m", l.max_half_width_m, Bounds{0, 1e3}, "... at most this, m");
+  v("loop_closure.min_half_yaw_rad", l.min_half_yaw_rad, kAngle,
+    "closure search: headings within ± this at least, rad ...");
+  v("loop_closure.heading_error_per_m", l.heading_error_per_m, Bounds{0, 10},
+    "... plus this (rad) per metre driven since the old node ...");
+  v("loop_closure.max_half_yaw_rad", l.max_half_yaw_rad, kAngle, "... at most this, rad");
+  v("loop_closure.max_sigma_m", l.max_sigma_m, Bounds{1e-6, 1e3},
+    "an accepted closure's refinement pins the position to this standard deviation, m");
+  v("loop_closure.distinct_m", l.distinct_m, Bounds{0, 1e3},
+    "another valid posture this far from a closure's makes it ambiguous, m ...");
+  v("loop_closure.distinct_rad", l.distinct_rad, kAngle, "... or this, rad");
+  v("loop_closure.confirm_after", l.confirm_after, Bounds{1, 1e6},
+    "consecutive nodes whose closures agree on one correction before it is applied");
+  v("loop_closure.agree_m", l.agree_m, Bounds{0, 1e3},
+    "closures agree when their corrections differ by at most this, m ...");
+  v("loop_closure.agree_rad", l.agree_rad, kAngle, "... and this, rad");
+  v("loop_closure.sigma_floor_m", l.sigma_floor_m, Bounds{1e-6, 1e3},
+    "added to the refinement's position σ in the graph's edges, m ...");
+  v("loop_closure.sigma_floor_rad", l.sigma_floor_rad, Bounds{1e-6, 10}, "... heading σ, rad");
+  v("loop_closure.huber_scale", l.graph.closure_loss_scale, Bounds{0, 1e6},
+    "closures pull with a bounded force beyond this many σ (0: plain least squares)");
+  v("loop_closure.rejection_chi2", l.graph.closure_rejection_chi2, Bounds{0, 1e12},
+    "a closure whose χ² (3 dof) stays above this after a solve is set aside (0: never)");
+  v("loop_closure.render_min_shift_m", l.render_min_shift_m, Bounds{0, 1e3},
+    "the map is rendered again from the nodes when a solve moved one more than this, m");
+}
+
+template <class C, class V>
 void VisitLocalise(C& c, V& v) {
   auto& l = c.localise;
   v("localise.confirm_after", l.confirm_after, Bounds{1, 1e6},
@@ -270,6 +317,7 @@ void VisitOptions(C& c, V& v) {
   VisitRefinement(c, v);
   VisitSession(c, v);
   VisitRecovery(c, v);
+  VisitLoopClosure(c, v);
   VisitLocalise(c, v);
   VisitLog(c, v);
   VisitOccupancyGrid(c, v);

@@ -7,6 +7,7 @@
 #include "scanloc/common/atomic_file.hpp"
 #include "scanloc/common/output_folder.hpp"
 #include "scanloc/io/candidate_report.hpp"
+#include "scanloc/io/g2o_file.hpp"
 #include "scanloc/io/occupancy_grid_io.hpp"
 #include "scanloc/io/record_keys.hpp"
 #include "scanloc/maps/point_map_io.hpp"
@@ -29,6 +30,29 @@ nlohmann::json RefinedCandidatesJson(const LocalisationResult& localisation) {
                        {keys::kExpectValueM, candidate.test.expect_value_m},
                        {keys::kMatchRatio, candidate.test.MatchRatio()}});
   return refined;
+}
+
+// A loop closure tried: where, against how many old nodes, the rules' verdict and the correction.
+nlohmann::json ClosureJson(const ClosureAttempt& c) {
+  nlohmann::json out = {{keys::kAccepted, c.accepted},
+                        {keys::kReason, c.reason},
+                        {keys::kNode, c.node},
+                        {keys::kOldNode, c.old_node},
+                        {keys::kOldIteration, c.old_iteration},
+                        {keys::kLocalNodes, c.local_nodes},
+                        {keys::kPathSinceM, c.path_since_m},
+                        {keys::kHalfWidthM, c.window.half_width_m},
+                        {keys::kHalfYawRad, c.window.half_yaw_rad},
+                        {keys::kMatched, ToJson(c.T_world_robot_matched)},
+                        {keys::kTOldRobot, ToJson(c.T_old_robot)},
+                        {keys::kLargestShiftM, c.largest_shift_m},
+                        {keys::kRendered, c.rendered},
+                        {keys::kTimeS, c.time_s}};
+  if (c.test) {
+    out[keys::kExpectValueM] = c.test->expect_value_m;
+    out[keys::kMatchRatio] = c.test->MatchRatio();
+  }
+  return out;
 }
 
 // The hypotheses a localisation holds, best first.
@@ -76,6 +100,7 @@ nlohmann::json ToJson(const IterationRecord& r) {
     out[keys::kPosed] = r.posed;
     out[keys::kHypotheses] = HypothesesJson(r.hypotheses);
   }
+  if (r.closure) out[keys::kClosure] = ClosureJson(*r.closure);
   if (r.search_window && r.search) {
     const SearchWindow& w = *r.search_window;
     out[keys::kSearch] = {{keys::kCentre, ToJson(w.centre)},
@@ -118,7 +143,23 @@ void RunFolder::Record(const IterationRecord& record) {
   records_ << ToJson(record).dump() << '\n';
   records_.flush();  // a line is complete on disk before the next iteration starts
   if (!records_) throw std::runtime_error("error while writing " + Path("iterations.jsonl"));
-  if (record.posed) trajectory_.push_back({record.timestamp_s, record.T_world_robot});
+  if (!record.posed) return;
+  trajectory_.push_back({record.timestamp_s, record.T_world_robot});
+  trajectory_records_.push_back(record.index);
+}
+
+void RunFolder::Correct(const std::vector<std::optional<Pose2D>>& postures) {
+  if (postures.empty()) return;
+  online_trajectory_ = trajectory_;
+  for (std::size_t i = 0; i < trajectory_.size(); ++i) {
+    const std::size_t record = trajectory_records_[i];
+    if (record < postures.size() && postures[record]) trajectory_[i].pose = *postures[record];
+  }
+}
+
+void RunFolder::WriteGraph(const PoseGraph& graph) {
+  WriteG2o(graph, Path("graph.g2o"));
+  wrote_graph_ = true;
 }
 
 void RunFolder::Finish(const PointMap& map, nlohmann::json summary, const OccupancyGrid* grid) {
@@ -128,6 +169,11 @@ void RunFolder::Finish(const PointMap& map, nlohmann::json summary, const Occupa
   summary["files"] = {{keys::kIterations, "iterations.jsonl"},
                       {"trajectory", "trajectory.tum"},
                       {"map", "map.pcd"}};
+  if (!online_trajectory_.empty()) {
+    WriteTumTrajectory(Path("trajectory-online.tum"), online_trajectory_);
+    summary["files"]["trajectory_online"] = "trajectory-online.tum";
+  }
+  if (wrote_graph_) summary["files"]["pose_graph"] = "graph.g2o";
   if (grid) {
     WriteOccupancyGrid(directory_, *grid);
     summary["files"]["occupancy_grid"] = "map.yaml";

@@ -55,6 +55,14 @@ void AddLocalisationSummary(const SessionCounts& c, nlohmann::json& summary) {
   if (!c.first_confirmed) summary["problem"] = "no posture was ever confirmed on the map";
 }
 
+// Closure edges the graph still holds active after its last solve.
+std::size_t ClosuresKept(const PoseGraph& graph) {
+  std::size_t kept = 0;
+  for (const PoseGraphEdge& edge : graph.edges())
+    kept += edge.kind == EdgeKind::kClosure && edge.active;
+  return kept;
+}
+
 }  // namespace
 
 void SessionCounts::Add(const IterationRecord& record) {
@@ -79,6 +87,11 @@ void SessionCounts::Add(const IterationRecord& record) {
   ambiguous += record.state == "ambiguous";
   max_hypotheses = std::max(max_hypotheses, record.hypotheses.size());
   unposed += !record.posed;
+  if (record.closure) {
+    ++closures_tried;
+    closures_accepted += record.closure->accepted;
+    map_renders += record.closure->rendered;
+  }
 }
 
 bool MostlyUnconfirmed(const SessionCounts& counts) {
@@ -161,6 +174,14 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
   if (MostlyUnconfirmed(c))
     summary["problem"] = "most localised scans were not confirmed by the Likelihood Test";
   if (c.localisation) AddLocalisationSummary(c, summary);
+  if (run.session && run.session->pose_graph()) {
+    const PoseGraph& graph = *run.session->pose_graph();
+    summary["loop_closure"] = {{"nodes", graph.nodes().size()},
+                               {"closures_tried", c.closures_tried},
+                               {"closures_accepted", c.closures_accepted},
+                               {"closures_kept", ClosuresKept(graph)},
+                               {"map_renders", c.map_renders}};
+  }
   if (!c.failure.empty()) summary["failed"] = c.failure;
   return summary;
 }

@@ -48,6 +48,7 @@ void SessionOptions::Validate() const {
           "insert thresholds must be >= 0");
   signature.Validate();
   recovery.Validate();
+  loop_closure.Validate();
   require(std::isfinite(initial_pose.x_m) && std::isfinite(initial_pose.y_m) &&
               std::isfinite(initial_pose.yaw_rad),
           "initial_pose must be finite");
@@ -61,7 +62,8 @@ Session::Session(const SessionConfig& config, LaserMounting mounting, LineMap li
       line_map_(std::move(line_map)),
       point_map_(std::move(point_map)),
       signature_(options_.signature),
-      drift_(options_.recovery) {
+      drift_(options_.recovery),
+      loop_(options_.loop_closure, mounting_) {
   options_.Validate();
   localisation_.validation.Validate();
   localisation_.scoring.test.Validate();
@@ -89,6 +91,7 @@ IterationRecord Session::Process(const Iteration& iteration) {
   MaybeExtend(record, iteration.scan);
   if (count_ == 0 && iteration.odometry) last_localised_odometry_ = *iteration.odometry;
   last_pose_ = record.T_world_robot;
+  MaybeCloseLoop(record, iteration.scan);
   if (iteration.odometry) last_odometry_ = iteration.odometry;
   ++count_;
   record.map_points = point_map_.live_size();
@@ -206,6 +209,36 @@ void Session::MaybeExtend(IterationRecord& record, const LaserScan& scan) {
   last_inserted_pose_ = record.T_world_robot;
   record.inserted = true;
   record.insert_s = SecondsSince(start);
+}
+
+// With loop closure on, a scan that extended the map becomes a node, every scan is anchored to
+// the newest node, and a closure is tried when one is due. After an accepted one the session goes
+// on from the corrected node, on the map rendered again from every node.
+void Session::MaybeCloseLoop(IterationRecord& record, const LaserScan& scan) {
+  if (!options_.loop_closure.enabled) return;
+  if (record.inserted) {
+    const RankedCandidate* kept = record.Kept();
+    std::optional<Eigen::Matrix3d> covariance;
+    if (kept && kept->refinement && kept->refinement->has_covariance)
+      covariance = kept->refinement->covariance;
+    loop_.AddNode(record.index, scan, record.T_world_robot, covariance);
+  }
+  loop_.Anchor(record.index, record.T_world_robot);
+  if (!record.inserted) return;
+  record.closure = loop_.MaybeClose(localisation_, point_map_.options());
+  if (!record.closure || !record.closure->accepted) return;
+  last_pose_ = *loop_.NewestNode();
+  last_inserted_pose_ = last_pose_;
+  if (record.closure->rendered) point_map_ = loop_.Render(point_map_.options(), options_.extension);
+}
+
+std::vector<std::optional<Pose2D>> Session::CorrectedPostures() const {
+  if (!options_.loop_closure.enabled) return {};
+  return loop_.CorrectedPostures();
+}
+
+const PoseGraph* Session::pose_graph() const {
+  return options_.loop_closure.enabled ? &loop_.graph() : nullptr;
 }
 
 }  // namespace scanloc

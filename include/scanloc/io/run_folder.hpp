@@ -29,6 +29,11 @@ class RunFolder {
   // Appends one complete line to iterations.jsonl and remembers the posture for the trajectory
   // (a scan without one, a localisation still searching, is left out of it).
   void Record(const IterationRecord& record);
+  // Loop closure's corrections, by record index: the trajectory takes them, and the postures as
+  // the session gave them go to trajectory-online.tum. Nothing happens when `postures` is empty.
+  void Correct(const std::vector<std::optional<Pose2D>>& postures);
+  // The pose graph, as graph.g2o.
+  void WriteGraph(const PoseGraph& graph);
   // Writes trajectory.tum, map.pcd, map.pgm + map.yaml when `grid` is given, and summary.json
   // (the given summary plus file names), the summary last.
   void Finish(const PointMap& map, nlohmann::json summary, const OccupancyGrid* grid = nullptr);
@@ -40,6 +45,9 @@ class RunFolder {
   std::string directory_;
   std::ofstream records_;
   std::vector<StampedPose> trajectory_;
+  std::vector<std::size_t> trajectory_records_;  // the record index of each trajectory posture
+  std::vector<StampedPose> online_trajectory_;   // before Correct, when it corrected anything
+  bool wrote_graph_ = false;
 };
 
 }  // namespace scanloc

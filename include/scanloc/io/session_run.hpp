@@ -40,6 +40,8 @@ struct SessionCounts {
   std::optional<std::size_t> first_confirmed;
   double first_confirmed_timestamp_s = 0.0;
   std::size_t ambiguous = 0, max_hypotheses = 0, unposed = 0;
+  // Loop closure: closures tried, accepted, and the renders of the map they caused.
+  std::size_t closures_tried = 0, closures_accepted = 0, map_renders = 0;
   double first_timestamp_s = 0.0, min_timestamp_s = 0.0, max_timestamp_s = 0.0;
   double wall_s = 0.0;
   bool interrupted = false;  // stopped by options.stop

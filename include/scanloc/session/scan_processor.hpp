@@ -9,6 +9,7 @@
 #include "scanloc/maps/point_map.hpp"
 #include "scanloc/session/iteration.hpp"
 #include "scanloc/session/localisation.hpp"
+#include "scanloc/session/loop_closure.hpp"
 #include "scanloc/session/wide_search.hpp"
 
 namespace scanloc {
@@ -57,6 +58,8 @@ struct IterationRecord {
   bool inserted = false;       // the scan extended the map
   std::size_t carved = 0;      // map points removed by this scan's free space
   std::size_t map_points = 0;  // after this iteration
+  // The loop closure tried after this scan extended the map, when one was due.
+  std::optional<ClosureAttempt> closure;
   double insert_s = 0.0, total_s = 0.0;
 
   // The refinement kept, when the scan was localised.
@@ -74,6 +77,11 @@ class ScanProcessor {
   virtual IterationRecord Process(const Iteration& iteration) = 0;
   virtual const PointMap& point_map() const = 0;
   virtual const LaserMounting& mounting() const = 0;
+  // Postures corrected after the fact by loop closure, by record index (none for a record the
+  // correction does not reach); empty when the processor corrects nothing.
+  virtual std::vector<std::optional<Pose2D>> CorrectedPostures() const { return {}; }
+  // The pose graph, when the processor keeps one.
+  virtual const PoseGraph* pose_graph() const { return nullptr; }
 };
 
 }  // namespace scanloc

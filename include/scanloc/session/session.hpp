@@ -15,6 +15,7 @@
 #include "scanloc/maps/point_map.hpp"
 #include "scanloc/session/iteration.hpp"
 #include "scanloc/session/localisation.hpp"
+#include "scanloc/session/loop_closure.hpp"
 #include "scanloc/session/map_extension.hpp"
 #include "scanloc/session/recovery.hpp"
 #include "scanloc/session/scan_processor.hpp"
@@ -61,6 +62,8 @@ struct SessionOptions {
   bool learned_max_expect_value = false;
   // When the session counts itself lost, and the wide search it then adds.
   RecoveryOptions recovery;
+  // Nodes, closures and the pose graph whose corrections move the map.
+  LoopClosureOptions loop_closure;
   Pose2D initial_pose;  // T_world_robot of the first iteration (§3.2.2: by convention)
   void Validate() const;
 };
@@ -94,6 +97,9 @@ class Session : public ScanProcessor {
   const LaserMounting& mounting() const override { return mounting_; }
   std::size_t iterations() const { return count_; }
   const LaserSignature& signature() const { return signature_; }
+  const LoopCloser& loop_closer() const { return loop_; }
+  std::vector<std::optional<Pose2D>> CorrectedPostures() const override;
+  const PoseGraph* pose_graph() const override;
 
  private:
   MapView View() const;
@@ -104,6 +110,7 @@ class Session : public ScanProcessor {
                            std::vector<Candidate>& candidates) const;
   void LocaliseInto(IterationRecord& record, const Iteration& iteration);
   void MaybeExtend(IterationRecord& record, const LaserScan& scan);
+  void MaybeCloseLoop(IterationRecord& record, const LaserScan& scan);
 
   SessionOptions options_;
   LocalisationOptions localisation_;
@@ -112,6 +119,7 @@ class Session : public ScanProcessor {
   PointMap point_map_;
   LaserSignature signature_;
   DriftTracker drift_;
+  LoopCloser loop_;
   std::size_t count_ = 0;
   Pose2D last_pose_;  // T_world_robot of the previous iteration
   std::optional<Pose2D> last_odometry_;

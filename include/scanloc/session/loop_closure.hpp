@@ -1,0 +1,149 @@
+#pragma once
+// Loop closure (issue 16): the scans that extend the map become nodes of a pose graph, each
+// keeping its scan, so that the map can be rendered again from corrected postures. Consecutive
+// nodes are linked by the postures the session gave them, weighted by the refinement's
+// covariance; when the session comes back near nodes laid a long path ago, the scan is localised
+// against a map rendered from those old nodes only, over a window that grows with the path driven
+// since, and a posture the Likelihood Test validates (and that the geometry pins in every
+// direction) becomes a closure edge. The graph is then solved; closures it cannot explain are set
+// aside (PoseGraph), and every scan's posture follows its node.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scanloc/geometry/laser_scan.hpp"
+#include "scanloc/graph/pose_graph.hpp"
+#include "scanloc/maps/point_map.hpp"
+#include "scanloc/session/localisation.hpp"
+#include "scanloc/session/map_extension.hpp"
+#include "scanloc/session/wide_search.hpp"
+
+namespace scanloc {
+
+struct LoopClosureOptions {
+  bool enabled = false;
+  // A node may close a loop with the current scan once the path driven since it was laid exceeds
+  // this: younger nodes are the map the session is matching against anyway.
+  double min_path_m = 10.0;
+  // Old nodes within this distance of the current posture render the map the scan is matched
+  // against; fewer than min_local_nodes of them try nothing.
+  double local_map_radius_m = 5.0;
+  int min_local_nodes = 3;
+  // At most this many of them, the nearest: enough walls to pin a posture, a bounded cost.
+  int max_local_nodes = 30;
+  // A closure is tried at every this many new nodes (the cost stays bounded per metre driven).
+  int attempt_every_nodes = 5;
+  // The window searched around the current posture: min_half_width_m + translation_error_per_m ·
+  // the path driven since the nearest old node, at most max_half_width_m; the same for heading.
+  double min_half_width_m = 0.3;
+  double translation_error_per_m = 0.02;
+  double max_half_width_m = 2.0;
+  double min_half_yaw_rad = 0.1;
+  double heading_error_per_m = 0.005;
+  double max_half_yaw_rad = 0.5;
+  WideSearchOptions search;
+  // The refinement of an accepted closure pins the posture to within this (its largest standard
+  // deviation) and is not flagged degenerate: a corridor gives no closure along its axis. Another
+  // valid refinement farther than distinct_m or distinct_rad from it makes the match ambiguous.
+  double max_sigma_m = 0.05;
+  double distinct_m = 0.3;
+  double distinct_rad = 0.1;
+  // A closure is confirmed when this many consecutive nodes match the old nodes with the same
+  // correction (within agree_m and agree_rad of each other); while one is pending, every new node
+  // is tried. One scan that fits a look-alike place does not bend the map.
+  int confirm_after = 3;
+  double agree_m = 0.1;
+  double agree_rad = 0.03;
+  // Floors added to the refinement's standard deviations (it knows only the scan's own noise, not
+  // the map's): the edges' information is that of σ ⊕ floor.
+  double sigma_floor_m = 0.02;
+  double sigma_floor_rad = 0.005;
+  PoseGraphOptions graph;
+  // After a solve the map is rendered again from the nodes when one of them moved more than this.
+  double render_min_shift_m = 0.02;
+  // Throws std::invalid_argument naming the first option out of its domain.
+  void Validate() const;
+};
+
+// One closure tried: where, against what, what the Likelihood Test said, and what it changed.
+struct ClosureAttempt {
+  std::size_t iteration = 0;      // the scan's record index
+  std::size_t node = 0;           // the current node
+  std::size_t old_node = 0;       // the old node the edge starts from (the nearest)
+  std::size_t old_iteration = 0;  // its scan's record index
+  std::size_t local_nodes = 0;
+  double path_since_m = 0.0;  // path driven since the old node
+  SearchWindow window;
+  bool accepted = false;         // validated, pinned, and kept by the graph
+  std::string reason;            // why not, or "accepted"
+  Pose2D T_world_robot_before;   // the session's posture of the scan
+  Pose2D T_world_robot_matched;  // against the old nodes (when something was refined)
+  Pose2D T_old_robot;            // the same seen from the old node: the closure's measurement
+  std::optional<LikelihoodTestResult> test;  // of the kept refinement
+  double largest_shift_m = 0.0;              // the solve's largest node displacement
+  bool rendered = false;                     // the map was rendered again
+  double time_s = 0.0;
+};
+
+class LoopCloser {
+ public:
+  LoopCloser(const LoopClosureOptions& options, const LaserMounting& mounting);
+
+  // The scan of record `iteration` extended the map at T_world_robot: it becomes a node, linked
+  // to the previous one with `laser_covariance` (of its refinement, or empty when it has none).
+  void AddNode(std::size_t iteration, const LaserScan& scan, const Pose2D& T_world_robot,
+               const std::optional<Eigen::Matrix3d>& laser_covariance);
+  // Every record's posture, remembered relative to the newest node (call after AddNode).
+  void Anchor(std::size_t iteration, const Pose2D& T_world_robot);
+  // Tries a closure for the newest node when one is due. On an accepted one, the graph is solved
+  // and the caller renders the map again when the attempt says so.
+  std::optional<ClosureAttempt> MaybeClose(const LocalisationOptions& localisation,
+                                           const PointMapOptions& map_options);
+
+  // The map rendered from every node at its current posture, carving as the session does.
+  PointMap Render(const PointMapOptions& map_options, const MapExtensionOptions& extension) const;
+  // The newest node's posture (after a solve it moves).
+  std::optional<Pose2D> NewestNode() const;
+  // Each anchored record's posture following its node, by record index (none before the first
+  // node).
+  std::vector<std::optional<Pose2D>> CorrectedPostures() const;
+  // Closures accepted so far (set aside ones are not).
+  std::size_t accepted() const;
+
+  const PoseGraph& graph() const { return graph_; }
+  const std::vector<ClosureAttempt>& attempts() const { return attempts_; }
+  const LoopClosureOptions& options() const { return options_; }
+
+ private:
+  struct Node {
+    std::size_t iteration = 0;
+    LaserScan scan;
+    double path_m = 0.0;  // path driven from the first node to this one
+  };
+  struct Anchoring {
+    std::size_t node = 0;
+    Pose2D T_node_robot;
+  };
+
+  std::vector<std::size_t> OldNodesNear(const Pose2D& T_world_robot, double path_m) const;
+  std::optional<ClosureAttempt> Try(const LocalisationOptions& localisation,
+                                    const PointMapOptions& map_options);
+  void Judge(const LocalisationResult& result, ClosureAttempt& attempt);
+  void Confirm(const Eigen::Matrix3d& covariance, ClosureAttempt& attempt);
+  void Solve(ClosureAttempt& attempt);
+
+  LoopClosureOptions options_;
+  LaserMounting mounting_;
+  PoseGraph graph_;
+  std::vector<Node> nodes_;
+  std::vector<std::optional<Anchoring>> anchors_;  // by record index
+  std::vector<ClosureAttempt> attempts_;
+  std::size_t nodes_since_attempt_ = 0;
+  // Closures found but not yet confirmed: their edges and the correction they agree on.
+  std::vector<PoseGraphEdge> pending_;
+  Pose2D pending_correction_;
+};
+
+}  // namespace scanloc

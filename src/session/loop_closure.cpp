@@ -1,0 +1,280 @@
+#include "scanloc/session/loop_closure.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace scanloc {
+namespace {
+
+double Distance(const Pose2D& a, const Pose2D& b) {
+  return (a.Translation() - b.Translation()).norm();
+}
+
+// A posture covariance given in the world frame, seen from a frame at heading `yaw_rad`.
+Eigen::Matrix3d RotatedInto(const Eigen::Matrix3d& covariance_world, double yaw_rad) {
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  rotation.topLeftCorner<2, 2>() << std::cos(yaw_rad), std::sin(yaw_rad), -std::sin(yaw_rad),
+      std::cos(yaw_rad);
+  return rotation * covariance_world * rotation.transpose();
+}
+
+// The information of an edge from a node at heading `from_yaw_rad`: the refinement's covariance
+// (when it has one) rotated into that node's frame, plus the floors.
+Eigen::Matrix3d EdgeInformation(const std::optional<Eigen::Matrix3d>& covariance_world,
+                                double from_yaw_rad, double floor_m, double floor_rad) {
+  Eigen::Matrix3d covariance =
+      Eigen::Vector3d(floor_m * floor_m, floor_m * floor_m, floor_rad * floor_rad).asDiagonal();
+  if (covariance_world && covariance_world->allFinite())
+    covariance += RotatedInto(*covariance_world, from_yaw_rad);
+  Eigen::Matrix3d information = covariance.inverse();
+  return 0.5 * (information + information.transpose());
+}
+
+// Another valid refinement lies farther than distinct_m or distinct_rad from the kept one.
+bool Ambiguous(const LocalisationResult& result, const RankedCandidate& kept, double distinct_m,
+               double distinct_rad) {
+  for (const RankedCandidate& other : result.refined) {
+    if (other.verdict != Verdict::kValid) continue;
+    const Pose2D d = Between(kept.T_world_robot, other.T_world_robot);
+    if (std::hypot(d.x_m, d.y_m) > distinct_m || std::abs(NormalizeAngle(d.yaw_rad)) > distinct_rad)
+      return true;
+  }
+  return false;
+}
+
+// The largest standard deviation of the position part of a covariance.
+double LargestSigmaM(const Eigen::Matrix3d& covariance) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(covariance.topLeftCorner<2, 2>());
+  return std::sqrt(std::max(0.0, eigen.eigenvalues().maxCoeff()));
+}
+
+}  // namespace
+
+void LoopClosureOptions::Validate() const {
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("LoopClosureOptions: ") + what);
+  };
+  require(min_path_m >= 0.0, "min_path_m must be >= 0");
+  require(local_map_radius_m > 0.0, "local_map_radius_m must be positive");
+  require(min_local_nodes >= 1, "min_local_nodes must be >= 1");
+  require(attempt_every_nodes >= 1, "attempt_every_nodes must be >= 1");
+  require(min_half_width_m >= 0.0 && max_half_width_m >= min_half_width_m,
+          "0 <= min_half_width_m <= max_half_width_m");
+  require(translation_error_per_m >= 0.0 && heading_error_per_m >= 0.0,
+          "error growth rates must be >= 0");
+  require(
+      min_half_yaw_rad >= 0.0 && max_half_yaw_rad >= min_half_yaw_rad && max_half_yaw_rad <= M_PI,
+      "0 <= min_half_yaw_rad <= max_half_yaw_rad <= π");
+  search.Validate();
+  require(max_sigma_m > 0.0, "max_sigma_m must be positive");
+  require(max_local_nodes >= min_local_nodes, "max_local_nodes must be >= min_local_nodes");
+  require(distinct_m >= 0.0 && distinct_rad >= 0.0, "distinct_m and distinct_rad must be >= 0");
+  require(confirm_after >= 1, "confirm_after must be >= 1");
+  require(agree_m >= 0.0 && agree_rad >= 0.0, "agree_m and agree_rad must be >= 0");
+  require(sigma_floor_m > 0.0 && sigma_floor_rad > 0.0, "sigma floors must be positive");
+  require(graph.closure_loss_scale >= 0.0 && graph.closure_rejection_chi2 >= 0.0 &&
+              graph.max_iterations >= 1,
+          "graph: loss scale and rejection χ² >= 0, max_iterations >= 1");
+  require(render_min_shift_m >= 0.0, "render_min_shift_m must be >= 0");
+}
+
+LoopCloser::LoopCloser(const LoopClosureOptions& options, const LaserMounting& mounting)
+    : options_(options), mounting_(mounting) {
+  options_.Validate();
+}
+
+void LoopCloser::AddNode(std::size_t iteration, const LaserScan& scan, const Pose2D& T_world_robot,
+                         const std::optional<Eigen::Matrix3d>& laser_covariance) {
+  double path_m = 0.0;
+  if (!nodes_.empty())
+    path_m = nodes_.back().path_m + Distance(graph_.nodes().back(), T_world_robot);
+  nodes_.push_back({iteration, scan, path_m});
+  const std::size_t node = graph_.AddNode(T_world_robot);
+  ++nodes_since_attempt_;
+  if (node == 0) return;
+  const Pose2D& from = graph_.nodes()[node - 1];
+  graph_.AddEdge({node - 1, node, Between(from, graph_.nodes()[node]),
+                  EdgeInformation(laser_covariance, from.yaw_rad, options_.sigma_floor_m,
+                                  options_.sigma_floor_rad),
+                  EdgeKind::kSequential});
+}
+
+void LoopCloser::Anchor(std::size_t iteration, const Pose2D& T_world_robot) {
+  if (nodes_.empty()) return;
+  if (anchors_.size() <= iteration) anchors_.resize(iteration + 1);
+  const std::size_t node = nodes_.size() - 1;
+  anchors_[iteration] = Anchoring{node, Between(graph_.nodes()[node], T_world_robot)};
+}
+
+// The old nodes within the radius, nearest first, at most max_local_nodes.
+std::vector<std::size_t> LoopCloser::OldNodesNear(const Pose2D& T_world_robot,
+                                                  double path_m) const {
+  std::vector<std::pair<double, std::size_t>> near;
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    const double distance_m = Distance(graph_.nodes()[i], T_world_robot);
+    if (path_m - nodes_[i].path_m >= options_.min_path_m &&
+        distance_m <= options_.local_map_radius_m)
+      near.emplace_back(distance_m, i);
+  }
+  const std::size_t kept =
+      std::min(near.size(), static_cast<std::size_t>(options_.max_local_nodes));
+  std::partial_sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(kept), near.end());
+  std::vector<std::size_t> nodes;
+  for (std::size_t i = 0; i < kept; ++i) nodes.push_back(near[i].second);
+  return nodes;
+}
+
+std::optional<ClosureAttempt> LoopCloser::MaybeClose(const LocalisationOptions& localisation,
+                                                     const PointMapOptions& map_options) {
+  const bool due = !pending_.empty() ||
+                   nodes_since_attempt_ >= static_cast<std::size_t>(options_.attempt_every_nodes);
+  if (!options_.enabled || nodes_.empty() || !due) return std::nullopt;
+  nodes_since_attempt_ = 0;
+  const auto start = std::chrono::steady_clock::now();
+  std::optional<ClosureAttempt> attempt = Try(localisation, map_options);
+  if (!attempt) {
+    pending_.clear();
+    return std::nullopt;
+  }
+  attempt->time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  attempts_.push_back(*attempt);
+  return attempt;
+}
+
+// Localises the newest node's scan against a map of the old nodes near it.
+std::optional<ClosureAttempt> LoopCloser::Try(const LocalisationOptions& localisation,
+                                              const PointMapOptions& map_options) {
+  const std::size_t newest = nodes_.size() - 1;
+  const Pose2D T_world_robot = graph_.nodes()[newest];
+  const std::vector<std::size_t> old = OldNodesNear(T_world_robot, nodes_[newest].path_m);
+  if (old.size() < static_cast<std::size_t>(options_.min_local_nodes)) return std::nullopt;
+  ClosureAttempt attempt;
+  attempt.iteration = nodes_[newest].iteration;
+  attempt.node = newest;
+  attempt.local_nodes = old.size();
+  attempt.T_world_robot_before = T_world_robot;
+  attempt.old_node = old.front();
+  attempt.old_iteration = nodes_[attempt.old_node].iteration;
+  attempt.path_since_m = nodes_[newest].path_m - nodes_[attempt.old_node].path_m;
+  PointMap local(map_options);
+  for (const std::size_t i : old)
+    local.InsertScan(nodes_[i].scan, mounting_.LaserPose(graph_.nodes()[i]));
+  const MapView view{nullptr, &local};
+  const LaserScan& scan = nodes_[newest].scan;
+  const double grown_m = options_.translation_error_per_m * attempt.path_since_m;
+  attempt.window = {
+      mounting_.LaserPose(T_world_robot),
+      std::min(options_.max_half_width_m, options_.min_half_width_m + grown_m),
+      std::min(options_.max_half_yaw_rad,
+               options_.min_half_yaw_rad + options_.heading_error_per_m * attempt.path_since_m)};
+  std::vector<Candidate> candidates{{T_world_robot, "session"}};
+  const WideSearchResult search = WideSearch(view, scan, attempt.window, options_.search);
+  for (std::size_t i = 0; i < search.candidates.size(); ++i)
+    candidates.push_back(
+        {mounting_.RobotPose(search.candidates[i].T_world_laser), "search" + std::to_string(i)});
+  const LocalisationResult result =
+      Localise(view, scan, candidates, mounting_, localisation, RefinePolicy::kBestValid, 3);
+  Judge(result, attempt);
+  return attempt;
+}
+
+// Accepts the localisation's kept posture as a closure when the rules validated it and the
+// geometry pins it; the graph is then solved.
+void LoopCloser::Judge(const LocalisationResult& result, ClosureAttempt& attempt) {
+  const RankedCandidate* kept = result.Kept();
+  if (kept == nullptr) {
+    attempt.reason = "nothing was refined";
+    return;
+  }
+  attempt.T_world_robot_matched = kept->T_world_robot;
+  attempt.T_old_robot = Between(graph_.nodes()[attempt.old_node], kept->T_world_robot);
+  attempt.test = kept->test;
+  const RefinementResult& refinement = *kept->refinement;
+  if (!result.validated()) {
+    attempt.reason = std::string("not validated: ") + ToString(kept->verdict);
+  } else if (refinement.degenerate) {
+    attempt.reason = "degenerate: " + refinement.degeneracy;
+  } else if (!refinement.has_covariance) {
+    attempt.reason = "no covariance";
+  } else if (LargestSigmaM(refinement.covariance) > options_.max_sigma_m) {
+    attempt.reason = "not pinned: σ " + std::to_string(LargestSigmaM(refinement.covariance)) + " m";
+  } else if (Ambiguous(result, *kept, options_.distinct_m, options_.distinct_rad)) {
+    attempt.reason = "ambiguous: another distinct posture is valid too";
+  } else {
+    Confirm(refinement.covariance, attempt);
+    return;
+  }
+  pending_.clear();
+}
+
+// A valid closure joins the pending ones when it agrees with their correction (or starts them
+// anew); once confirm_after agree, their edges go into the graph and it is solved.
+void LoopCloser::Confirm(const Eigen::Matrix3d& covariance, ClosureAttempt& attempt) {
+  const Pose2D correction = attempt.T_world_robot_matched * attempt.T_world_robot_before.Inverse();
+  if (!pending_.empty()) {
+    const Pose2D disagreement =
+        Between(pending_correction_ * attempt.T_world_robot_before, attempt.T_world_robot_matched);
+    if (std::hypot(disagreement.x_m, disagreement.y_m) > options_.agree_m ||
+        std::abs(NormalizeAngle(disagreement.yaw_rad)) > options_.agree_rad)
+      pending_.clear();
+  }
+  if (pending_.empty()) pending_correction_ = correction;
+  const Pose2D& from = graph_.nodes()[attempt.old_node];
+  pending_.push_back(
+      {attempt.old_node, attempt.node, attempt.T_old_robot,
+       EdgeInformation(covariance, from.yaw_rad, options_.sigma_floor_m, options_.sigma_floor_rad),
+       EdgeKind::kClosure});
+  if (pending_.size() < static_cast<std::size_t>(options_.confirm_after)) {
+    attempt.reason = "pending: " + std::to_string(pending_.size()) + " of " +
+                     std::to_string(options_.confirm_after) + " agreeing scans";
+    return;
+  }
+  Solve(attempt);
+}
+
+// Adds the confirmed closures' edges and solves the graph.
+void LoopCloser::Solve(ClosureAttempt& attempt) {
+  for (const PoseGraphEdge& pending : pending_) graph_.AddEdge(pending);
+  pending_.clear();
+  const std::size_t edge = graph_.edges().size() - 1;
+  const std::vector<Pose2D> before = graph_.nodes();
+  graph_.Optimise(options_.graph);
+  for (std::size_t i = 0; i < before.size(); ++i)
+    attempt.largest_shift_m =
+        std::max(attempt.largest_shift_m, Distance(before[i], graph_.nodes()[i]));
+  attempt.accepted = graph_.edges()[edge].active;
+  attempt.reason = attempt.accepted ? "accepted" : "set aside by the graph";
+  attempt.rendered = attempt.largest_shift_m > options_.render_min_shift_m;
+}
+
+PointMap LoopCloser::Render(const PointMapOptions& map_options,
+                            const MapExtensionOptions& extension) const {
+  PointMap map(map_options);
+  for (std::size_t i = 0; i < nodes_.size(); ++i)
+    ExtendMap(map, nodes_[i].scan, mounting_.LaserPose(graph_.nodes()[i]), extension);
+  return map;
+}
+
+std::optional<Pose2D> LoopCloser::NewestNode() const {
+  if (graph_.nodes().empty()) return std::nullopt;
+  return graph_.nodes().back();
+}
+
+std::vector<std::optional<Pose2D>> LoopCloser::CorrectedPostures() const {
+  std::vector<std::optional<Pose2D>> postures(anchors_.size());
+  for (std::size_t i = 0; i < anchors_.size(); ++i)
+    if (anchors_[i]) postures[i] = graph_.nodes()[anchors_[i]->node] * anchors_[i]->T_node_robot;
+  return postures;
+}
+
+std::size_t LoopCloser::accepted() const {
+  return static_cast<std::size_t>(std::count_if(
+      attempts_.begin(), attempts_.end(), [](const ClosureAttempt& a) { return a.accepted; }));
+}
+
+}  // namespace scanloc
