@@ -239,7 +239,7 @@ void VisitLoopClosure(C& c, V& v) {
   v("loop_closure.min_local_nodes", l.min_local_nodes, Bounds{1, 1e6},
     "old nodes needed near before a closure is tried");
   v("loop_closure.max_local_nodes", l.max_local_nodes, Bounds{1, 1e6},
-    "... of which at most this many, the nearest, render that map");
+    "... the nearest of them and the nodes laid just before and after it, at most this many");
   v("loop_closure.attempt_every_nodes", l.attempt_every_nodes, Bounds{1, 1e6},
     "a closure is tried at every this many new nodes");
   v("loop_closure.min_half_width_m", l.min_half_width_m, Bounds{0, 1e3},

@@ -111,22 +111,34 @@ void LoopCloser::Anchor(std::size_t iteration, const Pose2D& T_world_robot) {
   anchors_[iteration] = Anchoring{node, Between(graph_.nodes()[node], T_world_robot)};
 }
 
-// The old nodes within the radius, nearest first, at most max_local_nodes.
+// The old nodes the scan is matched on: the nearest node old enough, and the nodes laid just
+// before and after it (at most max_local_nodes in all, all old enough and within the radius). One
+// stretch of one pass: its nodes agree with each other, where nodes of several passes would not
+// until their loops are closed. Empty when fewer than min_local_nodes.
 std::vector<std::size_t> LoopCloser::OldNodesNear(const Pose2D& T_world_robot,
                                                   double path_m) const {
-  std::vector<std::pair<double, std::size_t>> near;
-  for (std::size_t i = 0; i < nodes_.size(); ++i) {
-    const double distance_m = Distance(graph_.nodes()[i], T_world_robot);
-    if (path_m - nodes_[i].path_m >= options_.min_path_m &&
-        distance_m <= options_.local_map_radius_m)
-      near.emplace_back(distance_m, i);
+  auto usable = [&](std::size_t i) {
+    return path_m - nodes_[i].path_m >= options_.min_path_m &&
+           Distance(graph_.nodes()[i], T_world_robot) <= options_.local_map_radius_m;
+  };
+  std::optional<std::size_t> nearest;
+  for (std::size_t i = 0; i < nodes_.size() && path_m - nodes_[i].path_m >= options_.min_path_m;
+       ++i)
+    if (usable(i) && (!nearest || Distance(graph_.nodes()[i], T_world_robot) <
+                                      Distance(graph_.nodes()[*nearest], T_world_robot)))
+      nearest = i;
+  if (!nearest) return {};
+  std::vector<std::size_t> stretch = {*nearest};
+  const std::size_t wanted = static_cast<std::size_t>(options_.max_local_nodes);
+  for (std::size_t step = 1; stretch.size() < wanted; ++step) {
+    const bool before = step <= *nearest && usable(*nearest - step);
+    const bool after = *nearest + step < nodes_.size() && usable(*nearest + step);
+    if (!before && !after) break;
+    if (before) stretch.push_back(*nearest - step);
+    if (after && stretch.size() < wanted) stretch.push_back(*nearest + step);
   }
-  const std::size_t kept =
-      std::min(near.size(), static_cast<std::size_t>(options_.max_local_nodes));
-  std::partial_sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(kept), near.end());
-  std::vector<std::size_t> nodes;
-  for (std::size_t i = 0; i < kept; ++i) nodes.push_back(near[i].second);
-  return nodes;
+  if (stretch.size() < static_cast<std::size_t>(options_.min_local_nodes)) return {};
+  return stretch;
 }
 
 std::optional<ClosureAttempt> LoopCloser::MaybeClose(const LocalisationOptions& localisation,

@@ -212,8 +212,9 @@ void Session::MaybeExtend(IterationRecord& record, const LaserScan& scan) {
 }
 
 // With loop closure on, a scan that extended the map becomes a node, every scan is anchored to
-// the newest node, and a closure is tried when one is due. After an accepted one the session goes
-// on from the corrected node, on the map rendered again from every node.
+// the newest node, and a closure is tried when one is due. After an accepted one that moved a node
+// more than render_min_shift_m, the session goes on from the corrected node, on the map rendered
+// again from every node.
 void Session::MaybeCloseLoop(IterationRecord& record, const LaserScan& scan) {
   if (!options_.loop_closure.enabled) return;
   if (record.inserted) {
@@ -226,10 +227,12 @@ void Session::MaybeCloseLoop(IterationRecord& record, const LaserScan& scan) {
   loop_.Anchor(record.index, record.T_world_robot);
   if (!record.inserted) return;
   record.closure = loop_.MaybeClose(localisation_, point_map_.options());
-  if (!record.closure || !record.closure->accepted) return;
+  if (!record.closure || !record.closure->rendered) return;
+  // The map and the session follow the corrected nodes together; a smaller correction leaves
+  // both where they were (the next node's edge takes up the difference).
+  point_map_ = loop_.Render(point_map_.options(), options_.extension);
   last_pose_ = *loop_.NewestNode();
   last_inserted_pose_ = last_pose_;
-  if (record.closure->rendered) point_map_ = loop_.Render(point_map_.options(), options_.extension);
 }
 
 std::vector<std::optional<Pose2D>> Session::CorrectedPostures() const {

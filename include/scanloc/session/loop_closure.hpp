@@ -27,11 +27,12 @@ struct LoopClosureOptions {
   // A node may close a loop with the current scan once the path driven since it was laid exceeds
   // this: younger nodes are the map the session is matching against anyway.
   double min_path_m = 10.0;
-  // Old nodes within this distance of the current posture render the map the scan is matched
-  // against; fewer than min_local_nodes of them try nothing.
+  // The map a closure is matched on: the nearest old node within local_map_radius_m of the
+  // current posture and the nodes laid just before and after it, one stretch of one pass, at most
+  // max_local_nodes (enough walls to pin a posture, a bounded cost), each within the radius too;
+  // fewer than min_local_nodes try nothing.
   double local_map_radius_m = 5.0;
   int min_local_nodes = 3;
-  // At most this many of them, the nearest: enough walls to pin a posture, a bounded cost.
   int max_local_nodes = 30;
   // A closure is tried at every this many new nodes (the cost stays bounded per metre driven).
   int attempt_every_nodes = 5;
