@@ -97,6 +97,7 @@ void DrawPath(SvgCanvas& svg, const MapFrame& frame, const TrajectoryFigureInput
     if (row.flagged()) flagged.push_back(pixels.back());
   }
   svg.Polyline(pixels, style::kTrajectory, 2.0);
+  DrawClosures(svg, frame, *input.rows);
   // Circles at their exact place (Dots would snap them to a 2 px lattice, 32 px at 16×).
   svg.BeginGroup("", "flag");
   for (const Eigen::Vector2d& p : flagged) svg.Circle(p, kFlagRadiusPx, style::kInvalid);
@@ -111,6 +112,8 @@ std::string Legend(const TrajectoryFigureInput& input, double width_px) {
     legend.push_back({LegendItem::Symbol::kLine, kLineMapOverGrid, "line map"});
   legend.push_back({LegendItem::Symbol::kLine, style::kTrajectory, "kept postures"});
   legend.push_back({LegendItem::Symbol::kDot, style::kInvalid, "flagged (not validated)"});
+  if (HasClosures(*input.rows))
+    legend.push_back({LegendItem::Symbol::kLine, style::kClosure, "loop closures (accepted)"});
   legend.push_back({LegendItem::Symbol::kRing, "#000", "drawn below (click to go there)"});
   const double height = LegendHeight(legend, width_px - 16);
   SvgCanvas svg(width_px, height + 8, "legend", "legend");

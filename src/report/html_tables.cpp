@@ -93,6 +93,7 @@ std::string SummaryTable(const json& summary, const std::vector<IterationRow>& r
                                           {"ambiguous_scans", "ambiguous scans"},
                                           {"max_hypotheses", "hypotheses at most"},
                                           {"scans_without_posture", "scans without a posture"},
+                                          {"loop_closure", "loop closure"},
                                           {"problem", "problem"}};
   for (const auto& [key, name] : kKnown)
     if (const auto it = summary.find(key); it != summary.end()) line(name, SummaryValue(*it));

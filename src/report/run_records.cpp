@@ -185,6 +185,17 @@ RefinedCandidateRow RefinedCandidateFrom(const json& value, const std::string& p
   return r;
 }
 
+// The old scan an accepted loop closure closed with, when the record tried one that was accepted.
+std::optional<std::size_t> ClosedWith(const json& record) {
+  const auto it = record.find(keys::kClosure);
+  if (it == record.end()) return std::nullopt;
+  if (!it->is_object()) Fail(keys::kClosure, "an object");
+  if (!RequiredBool(*it, keys::kAccepted, keys::kClosure)) return std::nullopt;
+  const json& old = Required(*it, keys::kOldIteration, keys::kClosure, "a whole number");
+  if (!old.is_number_unsigned()) Fail(Join(keys::kClosure, keys::kOldIteration), "a whole number");
+  return old.get<std::size_t>();
+}
+
 IterationRow RowFrom(const json& record) {
   if (!record.is_object()) Fail("the record", "a JSON object");
   IterationRow row;
@@ -222,6 +233,7 @@ IterationRow RowFrom(const json& record) {
   row.searched = record.contains(keys::kSearch);
   row.state = OptionalString(record, keys::kState, "");
   row.posed = !record.contains(keys::kPosed) || OptionalBool(record, keys::kPosed, "");
+  row.closed_with = ClosedWith(record);
   if (record.contains(keys::kHypotheses))
     row.hypotheses = RequiredArray(record, keys::kHypotheses, "", "an array of hypotheses").size();
   if (record.contains(keys::kProblems)) {

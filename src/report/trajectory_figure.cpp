@@ -44,7 +44,30 @@ Box WholeView(const TrajectoryFigureInput& input) {
   return view.Padded(kPadding, kMinViewM);
 }
 
+// The start and end of the trajectory, squares with their names.
+void MarkStartAndEnd(SvgCanvas& svg, LabelPlacer& labels, const Eigen::Vector2d& start,
+                     const Eigen::Vector2d& end) {
+  svg.Rect(start.x() - 4, start.y() - 4, 8, 8, style::kValid);
+  svg.Text({start.x() + 7, start.y() - 7}, "start", {11.0, "start", "#222", true});
+  svg.Rect(end.x() - 4, end.y() - 4, 8, 8, "#000");
+  svg.Text({end.x() + 7, end.y() + 14}, "end", {11.0, "start", "#222", true});
+  labels.Reserve(start.x() + 5, start.y() - 18, 34, 14);
+  labels.Reserve(end.x() + 5, end.y() + 3, 26, 14);
+}
+
 }  // namespace
+
+void DrawClosures(SvgCanvas& svg, const MapFrame& frame, const std::vector<IterationRow>& rows) {
+  for (const IterationRow& row : rows)
+    if (row.closed_with && *row.closed_with < rows.size())
+      svg.Line(frame.ToPixel(rows[*row.closed_with].T_world_robot.Translation()),
+               frame.ToPixel(row.T_world_robot.Translation()), style::kClosure, 1.6);
+}
+
+bool HasClosures(const std::vector<IterationRow>& rows) {
+  return std::any_of(rows.begin(), rows.end(),
+                     [](const IterationRow& row) { return row.closed_with.has_value(); });
+}
 
 bool TrajectoryCloseUpWorthwhile(const TrajectoryFigureInput& input) {
   if (!input.rows || input.rows->empty()) return false;
@@ -71,6 +94,8 @@ std::string TrajectoryFigure(const TrajectoryFigureInput& input, const std::stri
   if (has_lines) legend.push_back({LegendItem::Symbol::kLine, style::kLineMap, "line map"});
   legend.push_back({LegendItem::Symbol::kLine, style::kTrajectory, "kept postures"});
   legend.push_back({LegendItem::Symbol::kDot, style::kInvalid, "flagged (not validated)"});
+  if (HasClosures(rows))
+    legend.push_back({LegendItem::Symbol::kLine, style::kClosure, "loop closures (accepted)"});
   legend.push_back({LegendItem::Symbol::kRing, "#000", "drawn below (click to go there)"});
   const double legend_height = LegendHeight(legend, kWidthPx - 16);
 
@@ -96,19 +121,12 @@ std::string TrajectoryFigure(const TrajectoryFigureInput& input, const std::stri
     if (row.flagged()) flagged.push_back(pixels.back());
   }
   svg.Polyline(pixels, style::kTrajectory, 1.6);
+  DrawClosures(svg, frame, rows);
   svg.Dots(flagged, 4.0, style::kInvalid);
   svg.EndGroup();
 
   LabelPlacer labels(2, 2, kWidthPx - 4, kPlotHeightPx - 40);
-  if (!rows.empty()) {
-    const Eigen::Vector2d start = pixels.front(), end = pixels.back();
-    svg.Rect(start.x() - 4, start.y() - 4, 8, 8, style::kValid);
-    svg.Text({start.x() + 7, start.y() - 7}, "start", {11.0, "start", "#222", true});
-    svg.Rect(end.x() - 4, end.y() - 4, 8, 8, "#000");
-    svg.Text({end.x() + 7, end.y() + 14}, "end", {11.0, "start", "#222", true});
-    labels.Reserve(start.x() + 5, start.y() - 18, 34, 14);
-    labels.Reserve(end.x() + 5, end.y() + 3, 26, 14);
-  }
+  if (!rows.empty()) MarkStartAndEnd(svg, labels, pixels.front(), pixels.back());
   for (const std::size_t index : input.linked) {
     if (index >= rows.size()) continue;
     const IterationRow& row = rows[index];

@@ -75,6 +75,8 @@ struct IterationRow {
   std::string state;
   std::size_t hypotheses = 0;
   bool posed = true;  // false: no posture (a localisation still searching)
+  // An accepted loop closure after this scan: the index of the old scan it closed with.
+  std::optional<std::size_t> closed_with;
 
   // Localised but not validated: what the operator should look at.
   bool flagged() const { return !skipped && !first && !validated; }

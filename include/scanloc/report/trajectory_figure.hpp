@@ -11,6 +11,9 @@
 
 namespace scanloc {
 
+class SvgCanvas;
+class MapFrame;
+
 struct TrajectoryFigureInput {
   const std::vector<IterationRow>* rows = nullptr;           // required
   const std::vector<Eigen::Vector2d>* map_points = nullptr;  // the final map; may be empty
@@ -21,6 +24,12 @@ struct TrajectoryFigureInput {
 
 // `id` must be unique in the page.
 std::string TrajectoryFigure(const TrajectoryFigureInput& input, const std::string& id);
+
+// Each accepted loop closure, a line from the old scan's posture to the closing scan's (for this
+// figure and the one over the grid).
+void DrawClosures(SvgCanvas& svg, const MapFrame& frame, const std::vector<IterationRow>& rows);
+// True when a row carries an accepted loop closure.
+bool HasClosures(const std::vector<IterationRow>& rows);
 
 // True when the trajectory spans less than a third of the whole map's view, so that a close-up
 // shows what the whole view cannot.
