@@ -284,9 +284,4 @@ std::vector<std::optional<Pose2D>> LoopCloser::CorrectedPostures() const {
   return postures;
 }
 
-std::size_t LoopCloser::accepted() const {
-  return static_cast<std::size_t>(std::count_if(
-      attempts_.begin(), attempts_.end(), [](const ClosureAttempt& a) { return a.accepted; }));
-}
-
 }  // namespace scanloc

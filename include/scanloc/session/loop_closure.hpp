@@ -110,8 +110,6 @@ class LoopCloser {
   // Each anchored record's posture following its node, by record index (none before the first
   // node).
   std::vector<std::optional<Pose2D>> CorrectedPostures() const;
-  // Closures accepted so far (set aside ones are not).
-  std::size_t accepted() const;
 
   const PoseGraph& graph() const { return graph_; }
   const std::vector<ClosureAttempt>& attempts() const { return attempts_; }
