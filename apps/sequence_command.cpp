@@ -117,9 +117,30 @@ void WarnIfMostlyUnconfirmed(const SessionCounts& c, bool strict) {
   std::cerr << "warning: " << message << "\n";
 }
 
+// What the run is started with, as run.json: a resumed run must be started with the same.
+nlohmann::json Identity(const SequenceArguments& a, const Config& config) {
+  return {{"command", a.subcommand},
+          {"inputs", Inputs(a)},
+          {"config", ToJson(config)},
+          {"skip_scans", a.skip_scans},
+          {"laser_offset_m",
+           a.laser_offset_m ? nlohmann::json(*a.laser_offset_m) : nlohmann::json(nullptr)},
+          {"raw_odometry", a.raw_odometry},
+          {"scan_topic", a.bag.scan_topic},
+          {"odom_topic", a.bag.odometry_topic}};
+}
+
+// The run folder: new (or overwritten with --force), or the interrupted run's, to resume.
+std::unique_ptr<RunFolder> OpenRunFolder(const SequenceArguments& a) {
+  if (!a.resume) return std::make_unique<RunFolder>(a.out_dir, a.force);
+  if (a.force) throw std::runtime_error("--resume and --force exclude each other");
+  return std::make_unique<RunFolder>(a.out_dir, RunFolderOpening::kResume);
+}
+
 }  // namespace
 
 void SequenceArguments::Register(CLI::App& command, const std::string& point_map_help) {
+  subcommand = command.get_name();
   command
       .add_option("--log", log_path, "CARMEN log, ROS 1 bag or native sequence (told by content)")
       ->required()
@@ -146,7 +167,8 @@ void SequenceArguments::Register(CLI::App& command, const std::string& point_map
 }
 
 void RunSequence(const SequenceArguments& a, Config config, const ProcessorMaker& make) {
-  RefuseNonEmptyFolder(a.out_dir, a.force);  // before anything is read (RunFolder checks again)
+  // Before anything is read (RunFolder checks again).
+  if (!a.resume) RefuseNonEmptyFolder(a.out_dir, a.force);
   CarmenOptions carmen = config.log;         // --laser-offset and --raw-odometry override it
   if (a.laser_offset_m) carmen.laser_offset_m = a.laser_offset_m;
   if (a.raw_odometry) carmen.repair_reversed_odometry = false;
@@ -157,7 +179,9 @@ void RunSequence(const SequenceArguments& a, Config config, const ProcessorMaker
   LineMap lines = a.line_map_path.empty() ? LineMap{} : ReadLineMap(a.line_map_path);
   PointMap points = a.point_map_path.empty() ? PointMap(config.point_map)
                                              : LoadPointMapPcd(a.point_map_path, config.point_map);
-  RunFolder folder(a.out_dir, a.force);
+  const std::unique_ptr<RunFolder> opened = OpenRunFolder(a);
+  RunFolder& folder = *opened;
+  folder.Begin(Identity(a, config));
   std::signal(SIGINT, OnInterrupt);
   std::signal(SIGTERM, OnInterrupt);
   const SessionFactory make_session = [&](const IterationSource& from) {
@@ -171,6 +195,8 @@ void RunSequence(const SequenceArguments& a, Config config, const ProcessorMaker
   run_options.progress = !a.quiet;
   run_options.stop = &g_interrupted;
   if (config.write_occupancy_grid) run_options.occupancy_grid = config.occupancy_grid;
+  if (!folder.recorded().empty())
+    std::cerr << "resume: replaying " << folder.recorded().size() << " recorded iterations\n";
   const SessionRun run = RunSession(*source, make_session, folder, run_options);
   nlohmann::json summary = SummaryJson(run, *source);
   summary["log"] = a.log_path;

@@ -29,6 +29,8 @@ struct SequenceArguments {
   bool strict = false;
   bool raw_odometry = false;
   bool force = false;
+  bool resume = false;  // `scanloc session --resume` only
+  std::string subcommand;  // the subcommand's name, for run.json
   RosBagOptions bag;
 
   // `point_map_help` says what the saved point map is to the command.
@@ -42,6 +44,7 @@ using ProcessorMaker = std::function<std::unique_ptr<ScanProcessor>(
 // Reads the inputs, runs `make`'s processor over the sequence into the run folder, writes it and
 // tells the operator; throws when the run failed (what it did is written all the same) or, under
 // --strict, when most localised scans were not confirmed. `config` comes from the arguments.
+// With `resume`, the run folder's records are replayed first and the run goes on after them.
 void RunSequence(const SequenceArguments& arguments, Config config, const ProcessorMaker& make);
 
 }  // namespace scanloc::app

@@ -34,6 +34,9 @@ void RegisterSessionCommand(CLI::App& app) {
                    "first posture x y theta (default 0 0 0)")
       ->expected(3)
       ->check(PlausibleCoordinate());
+  command->add_flag("--resume", arguments->resume,
+                    "continue the interrupted or killed run in --out from its iterations.jsonl "
+                    "(same inputs and options; ends with the files an uninterrupted run writes)");
   command->final_callback([arguments] { Run(*arguments); });
 }
 

@@ -11,33 +11,10 @@
 
 #include "scanloc/worlds/laser_simulator.hpp"
 #include "scanloc/worlds/robot_path.hpp"
+#include "test_support.hpp"
 
 namespace scanloc {
 namespace {
-
-// A 24 × 16 m building with a 16 × 8 m block in its middle: a 4 m wide ring corridor, with
-// boxes and recesses along it so that no stretch is a featureless corridor.
-LineMap RingBuilding() {
-  LineMap map;
-  auto box = [&map](double x0, double y0, double x1, double y1) {
-    map.segments.push_back({{x0, y0}, {x1, y0}});
-    map.segments.push_back({{x1, y0}, {x1, y1}});
-    map.segments.push_back({{x1, y1}, {x0, y1}});
-    map.segments.push_back({{x0, y1}, {x0, y0}});
-  };
-  box(0.0, 0.0, 24.0, 16.0);  // outer walls
-  box(4.0, 4.0, 20.0, 12.0);  // the block
-  box(1.0, 1.0, 1.6, 1.5);    // boxes in the corridor, each corner different
-  box(9.0, 0.0, 9.8, 0.7);
-  box(15.0, 3.2, 16.5, 4.0);
-  box(22.8, 7.0, 24.0, 8.2);
-  box(20.0, 13.0, 20.6, 13.4);
-  box(12.0, 15.2, 12.5, 16.0);
-  box(6.0, 12.0, 6.9, 12.6);
-  box(0.0, 9.0, 0.5, 10.5);
-  box(4.0, 6.0, 3.4, 6.8);
-  return map;
-}
 
 struct Lap {
   std::vector<Pose2D> truth;
@@ -66,7 +43,7 @@ Lap DriveRing(const LineMap& world) {
 }
 
 TEST(LoopCloser, ComingBackToTheStartCorrectsTheDriftOfTheNodes) {
-  const LineMap world = RingBuilding();
+  const LineMap world = testing::RingBuilding();
   const Lap lap = DriveRing(world);
   ASSERT_GT(lap.truth.size(), 150u);
   // Dead reckoning with a heading error of 0.02 rad per 90° turn and 0.5 % scale: metres off
@@ -91,7 +68,6 @@ TEST(LoopCloser, ComingBackToTheStartCorrectsTheDriftOfTheNodes) {
     closer.Anchor(i, estimate);
     const auto attempt = closer.MaybeClose(localisation, PointMapOptions{});
     accepted += attempt && attempt->accepted;
-    if (attempt && attempt->accepted) estimate = *closer.NewestNode();
     if (attempt && attempt->accepted) estimate = *closer.NewestNode();
     if (attempt)
       std::printf("%zu old %zu (%zu nodes, %.1f m) %s shift %.3f matched-before %.3f\n", i,

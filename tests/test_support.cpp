@@ -25,6 +25,28 @@ LineMap Classroom() {
   return map;
 }
 
+LineMap RingBuilding() {
+  LineMap map;
+  auto box = [&map](double x0, double y0, double x1, double y1) {
+    map.segments.push_back({{x0, y0}, {x1, y0}});
+    map.segments.push_back({{x1, y0}, {x1, y1}});
+    map.segments.push_back({{x1, y1}, {x0, y1}});
+    map.segments.push_back({{x0, y1}, {x0, y0}});
+  };
+  box(0.0, 0.0, 24.0, 16.0);  // outer walls
+  box(4.0, 4.0, 20.0, 12.0);  // the block
+  box(1.0, 1.0, 1.6, 1.5);    // boxes in the corridor, each corner different
+  box(9.0, 0.0, 9.8, 0.7);
+  box(15.0, 3.2, 16.5, 4.0);
+  box(22.8, 7.0, 24.0, 8.2);
+  box(20.0, 13.0, 20.6, 13.4);
+  box(12.0, 15.2, 12.5, 16.0);
+  box(6.0, 12.0, 6.9, 12.6);
+  box(0.0, 9.0, 0.5, 10.5);
+  box(4.0, 6.0, 3.4, 6.8);
+  return map;
+}
+
 LineMap SmallRoomWithL() {
   LineMap map = RectangleRoom(8.0, 6.0);
   map.segments.push_back({{6.0, 4.0}, {7.0, 4.0}});

@@ -22,6 +22,10 @@ LineMap Classroom();
 // An 8 m × 6 m room with an L-shaped feature near one corner (the classroom's asymmetry).
 LineMap SmallRoomWithL();
 
+// A 24 × 16 m building with a 16 × 8 m block in its middle: a 4 m wide ring corridor, with
+// boxes and recesses along it so that no stretch is a featureless corridor.
+LineMap RingBuilding();
+
 // The map seen from T_world_laser with `beams` beams over 360°, with Gaussian range noise of
 // sigma_m drawn from `seed` (none when sigma_m is 0).
 LaserScan NoisyScan(const LineMap& map, const Pose2D& T_world_laser, std::size_t beams,

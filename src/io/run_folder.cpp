@@ -1,10 +1,13 @@
 #include "scanloc/io/run_folder.hpp"
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "scanloc/common/atomic_file.hpp"
+#include "scanloc/common/parse_error.hpp"
 #include "scanloc/common/output_folder.hpp"
 #include "scanloc/io/candidate_report.hpp"
 #include "scanloc/io/g2o_file.hpp"
@@ -70,6 +73,37 @@ nlohmann::json HypothesesJson(const std::vector<Hypothesis>& hypotheses) {
   return out;
 }
 
+// The files a session writes into its run folder, and those it writes at the end.
+const std::vector<std::string> kFinalFiles = {"summary.json",   "trajectory.tum",
+                                              "trajectory-online.tum", "map.pcd",
+                                              "map.pgm",        "map.yaml",
+                                              "graph.g2o"};
+const std::vector<std::string> kRunFiles = [] {
+  std::vector<std::string> files = kFinalFiles;
+  files.push_back("run.json");
+  files.push_back("iterations.jsonl");
+  return files;
+}();
+
+void RemoveFiles(const std::string& directory, const std::vector<std::string>& names) {
+  for (const std::string& name : names) {
+    std::error_code error;
+    std::filesystem::remove(directory + "/" + name, error);
+    if (error)
+      throw std::runtime_error("cannot remove " + directory + "/" + name + ": " + error.message());
+  }
+}
+
+// The JSON paths where `b` differs from `a`, e.g. "/config/loop_closure/enabled" (the first five).
+std::string DifferingPaths(const nlohmann::json& a, const nlohmann::json& b) {
+  const nlohmann::json patch = nlohmann::json::diff(a, b);
+  std::string paths;
+  for (std::size_t i = 0; i < patch.size() && i < 5; ++i)
+    paths += (i > 0 ? ", " : "") + patch[i]["path"].get<std::string>();
+  if (patch.size() > 5) paths += " and " + std::to_string(patch.size() - 5) + " more";
+  return paths;
+}
+
 }  // namespace
 
 nlohmann::json ToJson(const IterationRecord& r) {
@@ -129,20 +163,79 @@ nlohmann::json ToJson(const IterationRecord& r) {
   return out;
 }
 
-RunFolder::RunFolder(const std::string& directory, bool overwrite) : directory_(directory) {
-  RefuseNonEmptyFolder(directory_, overwrite);
+RunFolder::RunFolder(const std::string& directory, bool overwrite)
+    : RunFolder(directory, overwrite ? RunFolderOpening::kOverwrite : RunFolderOpening::kNew) {}
+
+RunFolder::RunFolder(const std::string& directory, RunFolderOpening opening)
+    : directory_(directory) {
+  if (opening == RunFolderOpening::kResume) {
+    Resume();
+    return;
+  }
+  RefuseNonEmptyFolder(directory_, opening == RunFolderOpening::kOverwrite);
   std::error_code error;
   std::filesystem::create_directories(directory_, error);
   if (error || !std::filesystem::is_directory(directory_))
     throw std::runtime_error("cannot create the run folder " + directory_ + ": " + error.message());
+  // An earlier run's files go first, its summary before the rest: no new record ever sits beside
+  // an old summary or map.
+  if (opening == RunFolderOpening::kOverwrite) RemoveFiles(directory_, kRunFiles);
   records_.open(Path("iterations.jsonl"), std::ios::trunc);
   if (!records_) throw std::runtime_error("cannot write " + Path("iterations.jsonl"));
 }
 
+void RunFolder::Resume() {
+  resuming_ = true;
+  const std::string records = Path("iterations.jsonl");
+  if (!std::filesystem::is_regular_file(records))
+    throw std::runtime_error(directory_ + " holds no iterations.jsonl: there is no run to resume");
+  RecordedRun run = ReadRecordsToResume(records);
+  recorded_ = std::move(run.iterations);
+  std::error_code error;
+  if (run.partial_line) std::filesystem::resize_file(records, run.complete_bytes, error);
+  records_.open(records, std::ios::app);
+  if (error || !records_)
+    throw std::runtime_error("cannot write " + records + (error ? ": " + error.message() : ""));
+}
+
+void RunFolder::Begin(const nlohmann::json& identity) {
+  const std::string path = Path("run.json");
+  if (!resuming_) {
+    WriteFileAtomically(path, [&](std::ostream& out) { out << identity.dump(2) << '\n'; });
+    return;
+  }
+  std::ifstream in(path);
+  if (!in)
+    throw std::runtime_error(path + " is missing: only a run folder written by `scanloc session` " +
+                             "can be resumed");
+  nlohmann::json stored;
+  try {
+    stored = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw ParseError(path, 1, std::string("expected the JSON of what the run was started with: ") +
+                                  e.what());
+  }
+  if (stored != identity)
+    throw std::runtime_error(
+        "--resume needs the inputs and options the run was started with; these differ from " +
+        path + ": " + DifferingPaths(stored, identity));
+}
+
 void RunFolder::Record(const IterationRecord& record) {
+  if (resuming_ && !appended_) {
+    // The first new record: the interrupted run's outputs no longer describe the folder.
+    RemoveFiles(directory_, kFinalFiles);
+  }
+  appended_ = true;
   records_ << ToJson(record).dump() << '\n';
   records_.flush();  // a line is complete on disk before the next iteration starts
-  if (!records_) throw std::runtime_error("error while writing " + Path("iterations.jsonl"));
+  if (!records_)  // the failed write(2)'s errno, e.g. "No space left on device"
+    throw std::runtime_error("cannot write " + Path("iterations.jsonl") + ": " +
+                             std::strerror(errno));
+  Replayed(record);
+}
+
+void RunFolder::Replayed(const IterationRecord& record) {
   if (!record.posed) return;
   trajectory_.push_back({record.timestamp_s, record.T_world_robot});
   trajectory_records_.push_back(record.index);
@@ -166,7 +259,8 @@ void RunFolder::Finish(const PointMap& map, nlohmann::json summary, const Occupa
   records_.close();
   WriteTumTrajectory(Path("trajectory.tum"), trajectory_);
   SavePointMapPcd(map, Path("map.pcd"));
-  summary["files"] = {{keys::kIterations, "iterations.jsonl"},
+  summary["files"] = {{"run", "run.json"},
+                      {keys::kIterations, "iterations.jsonl"},
                       {"trajectory", "trajectory.tum"},
                       {"map", "map.pcd"}};
   if (!online_trajectory_.empty()) {

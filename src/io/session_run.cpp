@@ -98,6 +98,43 @@ bool MostlyUnconfirmed(const SessionCounts& counts) {
   return counts.localised > 0 && 2 * counts.flagged > counts.localised;
 }
 
+namespace {
+
+// The next iteration processed into `run`: replayed while the run folder holds records to resume
+// from (a mismatch is thrown with the record's line), processed and recorded after them.
+IterationRecord ProcessOne(ScanProcessor& session, const Iteration& iteration, RunFolder& run,
+                           std::size_t index) {
+  if (index >= run.recorded().size()) {
+    IterationRecord record = session.Process(iteration);
+    run.Record(record);
+    return record;
+  }
+  try {
+    IterationRecord record = session.Replay(iteration, run.recorded()[index]);
+    run.Replayed(record);
+    return record;
+  } catch (const std::exception& e) {
+    throw ReplayMismatch(run.Path("iterations.jsonl") + ":" + std::to_string(index + 1) +
+                         ": cannot resume: " + e.what() +
+                         " (was the run made from another log or by another version of scanloc?)");
+  }
+}
+
+// A resumed run that did not get past its records has nothing new to write: the folder stays as
+// it was.
+void RequireReplayDone(const SessionRun& result, const RunFolder& run, bool stopped) {
+  const std::size_t recorded = run.recorded().size();
+  if (result.counts.iterations >= recorded) return;
+  throw ReplayMismatch(
+      stopped ? "interrupted while replaying the records; the run folder is as it was"
+              : "cannot resume: the sequence ended (or --max-scans stopped it) after " +
+                    std::to_string(result.counts.iterations) + " scans, but " +
+                    run.Path("iterations.jsonl") + " holds " + std::to_string(recorded) +
+                    " records: is it the same log?");
+}
+
+}  // namespace
+
 SessionRun RunSession(IterationSource& source, const SessionFactory& make_session, RunFolder& run,
                       const SessionRunOptions& options) {
   SessionRun result;
@@ -114,8 +151,9 @@ SessionRun RunSession(IterationSource& source, const SessionFactory& make_sessio
       ++skipped;
     while (!stopped() && wanted() && source.Next(iteration)) {
       if (!result.session) result.session = make_session(source);
-      const IterationRecord record = result.session->Process(iteration);
-      run.Record(record);
+      result.counts.replayed += result.counts.iterations < run.recorded().size();
+      const IterationRecord record =
+          ProcessOne(*result.session, iteration, run, result.counts.iterations);
       if (result.grid && CastIntoGrid(record.validated, record.first))
         result.grid->AddScan(iteration.scan,
                              result.session->mounting().LaserPose(record.T_world_robot));
@@ -125,10 +163,16 @@ SessionRun RunSession(IterationSource& source, const SessionFactory& make_sessio
         PrintProgress(result, source, SecondsSince(start), record.map_points);
       }
     }
+  } catch (const ReplayMismatch&) {
+    throw;
   } catch (const std::exception& e) {
+    // An error while replaying (the reader's, say) means the log is not the one recorded.
+    if (result.counts.iterations < run.recorded().size())
+      throw ReplayMismatch(std::string("cannot resume: ") + e.what());
     result.counts.failure = e.what();
   }
   if (options.progress) std::fprintf(stderr, "\n");
+  RequireReplayDone(result, run, stopped());
   result.counts.interrupted = stopped();
   result.counts.wall_s = SecondsSince(start);
   return result;
@@ -182,6 +226,7 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
                                {"closures_kept", ClosuresKept(graph)},
                                {"map_renders", c.map_renders}};
   }
+  if (c.replayed > 0) summary["resumed_after_records"] = c.replayed;
   if (!c.failure.empty()) summary["failed"] = c.failure;
   return summary;
 }

@@ -71,6 +71,17 @@ Session::Session(const SessionConfig& config, LaserMounting mounting, LineMap li
 }
 
 IterationRecord Session::Process(const Iteration& iteration) {
+  return Step(iteration, nullptr);
+}
+
+IterationRecord Session::Replay(const Iteration& iteration, const RecordedIteration& recorded) {
+  IterationRecord record = Step(iteration, &recorded);
+  const std::string mismatch = DescribeReplayMismatch(record, recorded);
+  if (!mismatch.empty()) throw ReplayMismatch(mismatch);
+  return record;
+}
+
+IterationRecord Session::Step(const Iteration& iteration, const RecordedIteration* recorded) {
   const auto start = std::chrono::steady_clock::now();
   IterationRecord record = BeginRecord(iteration, count_);
   record.prediction = Predict(iteration);
@@ -85,13 +96,22 @@ IterationRecord Session::Process(const Iteration& iteration) {
   } else if (!ShouldLocalise(iteration)) {
     record.skipped = true;
     record.T_world_robot = record.prediction;
+  } else if (recorded) {
+    RestoreLocalised(record, iteration, *recorded);
   } else {
     LocaliseInto(record, iteration);
   }
   MaybeExtend(record, iteration.scan);
   if (count_ == 0 && iteration.odometry) last_localised_odometry_ = *iteration.odometry;
   last_pose_ = record.T_world_robot;
-  MaybeCloseLoop(record, iteration.scan);
+  std::optional<Eigen::Matrix3d> covariance;
+  if (recorded) {
+    covariance = recorded->kept_covariance;
+  } else if (const RankedCandidate* kept = record.Kept();
+             kept && kept->refinement && kept->refinement->has_covariance) {
+    covariance = kept->refinement->covariance;
+  }
+  MaybeCloseLoop(record, iteration.scan, covariance);
   if (iteration.odometry) last_odometry_ = iteration.odometry;
   ++count_;
   record.map_points = point_map_.live_size();
@@ -158,12 +178,7 @@ std::vector<Candidate> Session::MakeCandidates(const Pose2D& prediction,
 // an unconfirmed one is flagged and, with unconfirmed_takes_prediction, the posture stays the
 // prediction unless the data disproves it.
 void Session::LocaliseInto(IterationRecord& record, const Iteration& iteration) {
-  LocalisationOptions options = localisation_;
-  record.signature_expect_value_m =
-      signature_.ExpectValueBound(localisation_.validation.max_expect_value_m);
-  if (options_.learned_max_expect_value)
-    options.validation.max_expect_value_m = record.signature_expect_value_m;
-  record.max_expect_value_m = options.validation.max_expect_value_m;
+  const LocalisationOptions options = BoundedOptions(record);
   std::vector<Candidate> candidates = MakeCandidates(record.prediction, iteration);
   const bool was_lost = drift_.lost();
   if (was_lost) AddSearchCandidates(record, iteration.scan, candidates);
@@ -178,6 +193,44 @@ void Session::LocaliseInto(IterationRecord& record, const Iteration& iteration) 
           ? kept.T_world_robot
           : record.prediction;
   if (record.validated) signature_.Add(kept.test);
+  AfterLocalised(record, iteration, was_lost);
+}
+
+// The localisation as recorded: its posture and verdict, the kept refinement's test taught to the
+// signature when it was confirmed. The wide search is not run again (its window is).
+void Session::RestoreLocalised(IterationRecord& record, const Iteration& iteration,
+                               const RecordedIteration& recorded) {
+  if (!recorded.localised)
+    throw ReplayMismatch("the replay localises the scan, the record says it was not localised");
+  BoundedOptions(record);
+  const bool was_lost = drift_.lost();
+  if (was_lost) {
+    record.search_window = drift_.Window(mounting_.LaserPose(record.prediction));
+    record.search.emplace();
+  }
+  record.localisation.emplace();
+  record.verdict = recorded.verdict;
+  record.validated = recorded.validated;
+  record.T_world_robot = recorded.T_world_robot;
+  if (record.validated) {
+    if (!recorded.kept_test)
+      throw ReplayMismatch("the record is confirmed but holds no Likelihood Test of its posture");
+    signature_.Add(*recorded.kept_test);
+  }
+  AfterLocalised(record, iteration, was_lost);
+}
+
+LocalisationOptions Session::BoundedOptions(IterationRecord& record) const {
+  LocalisationOptions options = localisation_;
+  record.signature_expect_value_m =
+      signature_.ExpectValueBound(localisation_.validation.max_expect_value_m);
+  if (options_.learned_max_expect_value)
+    options.validation.max_expect_value_m = record.signature_expect_value_m;
+  record.max_expect_value_m = options.validation.max_expect_value_m;
+  return options;
+}
+
+void Session::AfterLocalised(IterationRecord& record, const Iteration& iteration, bool was_lost) {
   drift_.Localised(record.validated);
   record.lost = drift_.lost();
   record.recovered = was_lost && record.validated;
@@ -215,15 +268,10 @@ void Session::MaybeExtend(IterationRecord& record, const LaserScan& scan) {
 // the newest node, and a closure is tried when one is due. After an accepted one that moved a node
 // more than render_min_shift_m, the session goes on from the corrected node, on the map rendered
 // again from every node.
-void Session::MaybeCloseLoop(IterationRecord& record, const LaserScan& scan) {
+void Session::MaybeCloseLoop(IterationRecord& record, const LaserScan& scan,
+                             const std::optional<Eigen::Matrix3d>& covariance) {
   if (!options_.loop_closure.enabled) return;
-  if (record.inserted) {
-    const RankedCandidate* kept = record.Kept();
-    std::optional<Eigen::Matrix3d> covariance;
-    if (kept && kept->refinement && kept->refinement->has_covariance)
-      covariance = kept->refinement->covariance;
-    loop_.AddNode(record.index, scan, record.T_world_robot, covariance);
-  }
+  if (record.inserted) loop_.AddNode(record.index, scan, record.T_world_robot, covariance);
   loop_.Anchor(record.index, record.T_world_robot);
   if (!record.inserted) return;
   record.closure = loop_.MaybeClose(localisation_, point_map_.options());

@@ -44,6 +44,8 @@ struct SessionCounts {
   std::size_t closures_tried = 0, closures_accepted = 0, map_renders = 0;
   double first_timestamp_s = 0.0, min_timestamp_s = 0.0, max_timestamp_s = 0.0;
   double wall_s = 0.0;
+  // Iterations replayed from the records of an interrupted run (--resume), not localised again.
+  std::size_t replayed = 0;
   bool interrupted = false;  // stopped by options.stop
   std::string failure;       // why the run ended early on an error; "" when it did not
 
@@ -64,7 +66,10 @@ struct SessionRun {
   std::optional<OccupancyGridBuilder> grid;  // when options.occupancy_grid is set
 };
 
-// Processes the source's iterations one by one, recording each in `run`.
+// Processes the source's iterations one by one, recording each in `run`. When `run` was opened to
+// resume, the iterations it holds records of are replayed first (ScanProcessor::Replay); a replay
+// that disagrees with its record, or a sequence that ends before the records do, throws
+// ReplayMismatch and leaves the folder as it was.
 SessionRun RunSession(IterationSource& source, const SessionFactory& make_session, RunFolder& run,
                       const SessionRunOptions& options);
 

@@ -10,6 +10,7 @@
 #include "scanloc/session/iteration.hpp"
 #include "scanloc/session/localisation.hpp"
 #include "scanloc/session/loop_closure.hpp"
+#include "scanloc/session/replay.hpp"
 #include "scanloc/session/wide_search.hpp"
 
 namespace scanloc {
@@ -75,6 +76,10 @@ class ScanProcessor {
  public:
   virtual ~ScanProcessor() = default;
   virtual IterationRecord Process(const Iteration& iteration) = 0;
+  // Resuming: processes the iteration as `recorded` says it was (replay.hpp) and returns a record
+  // of what the counts and the trajectory need. Throws ReplayMismatch when the replay disagrees
+  // with the record, std::logic_error when the processor cannot resume.
+  virtual IterationRecord Replay(const Iteration& iteration, const RecordedIteration& recorded);
   virtual const PointMap& point_map() const = 0;
   virtual const LaserMounting& mounting() const = 0;
   // Postures corrected after the fact by loop closure, by record index (none for a record the

@@ -91,6 +91,9 @@ class Session : public ScanProcessor {
   Session& operator=(const Session&) = delete;
 
   IterationRecord Process(const Iteration& iteration) override;
+  // The iteration as recorded: the recorded decision replaces the localisation; the map, the
+  // laser signature, the drift and the loop closures follow as they did (replay.hpp).
+  IterationRecord Replay(const Iteration& iteration, const RecordedIteration& recorded) override;
 
   const PointMap& point_map() const override { return point_map_; }
   const LineMap& line_map() const { return line_map_; }
@@ -102,6 +105,8 @@ class Session : public ScanProcessor {
   const PoseGraph* pose_graph() const override;
 
  private:
+  // One iteration, localised, or replayed from `recorded` when it is given.
+  IterationRecord Step(const Iteration& iteration, const RecordedIteration* recorded);
   MapView View() const;
   Pose2D Predict(const Iteration& iteration) const;
   bool ShouldLocalise(const Iteration& iteration) const;
@@ -109,8 +114,15 @@ class Session : public ScanProcessor {
   void AddSearchCandidates(IterationRecord& record, const LaserScan& scan,
                            std::vector<Candidate>& candidates) const;
   void LocaliseInto(IterationRecord& record, const Iteration& iteration);
+  void RestoreLocalised(IterationRecord& record, const Iteration& iteration,
+                        const RecordedIteration& recorded);
+  // Rule 2's E_max in force for the next localisation and the signature's bound, into `record`.
+  LocalisationOptions BoundedOptions(IterationRecord& record) const;
+  // The drift after a localised scan, confirmed or not; `was_lost` before it.
+  void AfterLocalised(IterationRecord& record, const Iteration& iteration, bool was_lost);
   void MaybeExtend(IterationRecord& record, const LaserScan& scan);
-  void MaybeCloseLoop(IterationRecord& record, const LaserScan& scan);
+  void MaybeCloseLoop(IterationRecord& record, const LaserScan& scan,
+                      const std::optional<Eigen::Matrix3d>& covariance);
 
   SessionOptions options_;
   LocalisationOptions localisation_;

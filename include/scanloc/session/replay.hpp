@@ -1,0 +1,53 @@
+#pragma once
+// Resuming a session: what one recorded iteration says that the session needs to stand where it
+// stood after it, without localising the scan again (the expensive part). The session replays the
+// scan with the recorded decision (posture, confirmation, the kept refinement's test and
+// covariance), extends its map and tries its loop closures as it did then, and checks that what
+// it recomputes agrees with the record: a run folder resumed with another log, configuration or
+// version of scanloc is refused rather than continued into a mix.
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "scanloc/geometry/pose2d.hpp"
+#include "scanloc/likelihood/candidate_ranking.hpp"
+#include "scanloc/likelihood/likelihood_test.hpp"
+
+namespace scanloc {
+
+struct IterationRecord;
+
+struct RecordedIteration {
+  std::size_t index = 0;
+  double timestamp_s = 0.0;
+  bool skipped = false;    // not localised: the robot had not moved enough
+  bool first = false;      // the first iteration of a session without a prior map
+  bool localised = false;  // candidates were evaluated and refined
+  Pose2D T_world_robot;    // the posture kept
+  bool validated = false;
+  Verdict verdict = Verdict::kValid;
+  // The kept refinement's Likelihood Test and covariance, when the scan was localised.
+  std::optional<LikelihoodTestResult> kept_test;
+  std::optional<Eigen::Matrix3d> kept_covariance;
+  double signature_expect_value_m = 0.0;
+  bool searched = false, lost = false, recovered = false;
+  bool inserted = false;
+  std::size_t carved = 0, map_points = 0;
+  bool closure_tried = false, closure_accepted = false, closure_rendered = false;
+};
+
+// A replayed iteration that does not agree with its record.
+class ReplayMismatch : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// What differs between a replayed iteration and its record ("" when they agree): the first field
+// that does, with both values.
+std::string DescribeReplayMismatch(const IterationRecord& replayed,
+                                   const RecordedIteration& recorded);
+
+}  // namespace scanloc
