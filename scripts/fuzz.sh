@@ -31,7 +31,15 @@ nice -n 10 cmake --build "$build_dir" --target scanloc_fuzzers -j"$(nproc)"
 
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-  for dir in fuzz/corpus/*/; do targets+=("$(basename "$dir")"); done
+  for dir in fuzz/corpus/*/; do
+    target=$(basename "$dir")
+    # ros_bag is built only when the library reads bags (cmake/ScanlocRosBag.cmake).
+    if [ ! -x "$build_dir/fuzz/${target}_fuzzer" ] && [ "$target" = ros_bag ]; then
+      echo "fuzz: ros_bag skipped: the library was built without ROS bag support"
+      continue
+    fi
+    targets+=("$target")
+  done
 fi
 artifacts="$PWD/$build_dir/artifacts"
 # UBSan reports with the stack that led there (the build makes them fatal).

@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(build-essential cmake pkg-config libeigen3-dev libnanoflann-dev libceres-dev libpcl-dev
           libgtest-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev zlib1g-dev
-          librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev  # ROS 1 bags
+          librosbag-storage-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev libbz2-dev  # ROS 1 bags
           python3-rosbag python3-sensor-msgs python3-nav-msgs python3-tf2-msgs  # scripts/make-bag.py
           chromium)  # chromium: the report's browser test (tests/report_browser_test.cpp)
 missing=()

@@ -17,6 +17,9 @@
 #include <stdexcept>
 #include <tuple>
 #include <utility>
+#include <vector>
+
+#include "ros_bag_structure.hpp"
 
 namespace scanloc {
 namespace {
@@ -114,6 +117,30 @@ std::string TopicsOfType(rosbag::View& view, const std::string& type) {
   return list.empty() ? "none" : list;
 }
 
+// The message as a `Message`, or null when it is of another type; its serialised bytes are
+// checked by `check` first, so that no length it announces is believed beyond its bytes.
+template <class Message>
+boost::shared_ptr<Message> Instantiate(const rosbag::MessageInstance& m,
+                                       void (*check)(const std::uint8_t*, std::size_t),
+                                       const std::string& path) {
+  if (!m.isType<Message>()) return nullptr;
+  std::vector<std::uint8_t> bytes(m.size());
+  ros::serialization::OStream stream(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+  m.write(stream);
+  try {
+    check(bytes.data(), bytes.size());
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error("ROS bag " + path + ": " + m.getTopic() + " message at bag time " +
+                             std::to_string(m.getTime().toSec()) + ": " + e.what());
+  }
+  return m.instantiate<Message>();
+}
+
+boost::shared_ptr<sensor_msgs::LaserScan> AsLaserScan(const rosbag::MessageInstance& m,
+                                                      const std::string& path) {
+  return Instantiate<sensor_msgs::LaserScan>(m, bag::CheckLaserScanBytes, path);
+}
+
 bool HasTopic(rosbag::View& view, const std::string& topic, const std::string& type) {
   for (const rosbag::ConnectionInfo* c : view.getConnections())
     if (c->topic == topic && (type.empty() || c->datatype == type)) return true;
@@ -142,6 +169,7 @@ struct RosBagIterationSource::Impl {
   Impl(const std::string& bag_path, RosBagOptions bag_options)
       : path(bag_path), options(std::move(bag_options)) {
     options.Validate();
+    bag::CheckBagStructure(path);  // before rosbag believes any length the file announces
     try {
       bag.open(path, rosbag::bagmode::Read);
     } catch (const rosbag::BagException& e) {
@@ -168,8 +196,7 @@ struct RosBagIterationSource::Impl {
   std::string FirstScanFrame() {
     rosbag::View scans(bag, rosbag::TopicQuery(options.scan_topic));
     for (const rosbag::MessageInstance& m : scans)
-      if (auto scan = m.instantiate<sensor_msgs::LaserScan>())
-        return FrameName(scan->header.frame_id);
+      if (auto scan = AsLaserScan(m, path)) return FrameName(scan->header.frame_id);
     return "";
   }
 
@@ -179,7 +206,7 @@ struct RosBagIterationSource::Impl {
     std::map<std::string, std::pair<std::string, Pose2D>> parent_of;  // child → (parent, T_p_c)
     rosbag::View statics(bag, rosbag::TopicQuery(kTfStaticTopic));
     for (const rosbag::MessageInstance& m : statics)
-      if (auto tf = m.instantiate<tf2_msgs::TFMessage>())
+      if (auto tf = Instantiate<tf2_msgs::TFMessage>(m, bag::CheckTfMessageBytes, path))
         for (const auto& t : tf->transforms)
           parent_of[FrameName(t.child_frame_id)] = {FrameName(t.header.frame_id),
                                                     PlanarPose(t.transform)};
@@ -212,7 +239,7 @@ struct RosBagIterationSource::Impl {
     const rosbag::MessageInstance& m = *cursor;
     last_bag_time_s = m.getTime().toSec();
     if (m.getTopic() == options.scan_topic) {
-      if (auto scan = m.instantiate<sensor_msgs::LaserScan>()) {
+      if (auto scan = AsLaserScan(m, path)) {
         Pending next{ToLaserScan(*scan),
                      path + ":" + options.scan_topic + "#" + std::to_string(scans_read)};
         try {
@@ -225,12 +252,12 @@ struct RosBagIterationSource::Impl {
         ++scans_read;
       }
     } else if (odometry_from == OdometryFrom::kTopic) {
-      if (auto odom = m.instantiate<nav_msgs::Odometry>()) {
+      if (auto odom = Instantiate<nav_msgs::Odometry>(m, bag::CheckOdometryBytes, path)) {
         const auto& p = odom->pose.pose;
         AddOdometry(odom->header.stamp.toSec(),
                     Pose2D(p.position.x, p.position.y, YawOf(p.orientation)).Normalized());
       }
-    } else if (auto tf = m.instantiate<tf2_msgs::TFMessage>()) {
+    } else if (auto tf = Instantiate<tf2_msgs::TFMessage>(m, bag::CheckTfMessageBytes, path)) {
       for (const auto& t : tf->transforms)
         if (FrameName(t.header.frame_id) == FrameName(options.odom_frame) &&
             FrameName(t.child_frame_id) == FrameName(options.base_frame))

@@ -1,7 +1,9 @@
 #include "scanloc/io/run_resume.hpp"
 
 #include <filesystem>
+#include <cstdint>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
@@ -15,18 +17,50 @@ namespace {
 
 using nlohmann::json;
 
+// Numbers as the record writer wrote them: integers where it wrote integers (a float converted to
+// an integer type out of its range would be undefined behaviour).
+std::int64_t Integer(const json& value, const char* key, std::int64_t min, std::int64_t max) {
+  if (!value.is_number_integer())
+    throw std::invalid_argument(std::string(key) + ": expected an integer");
+  if (value.is_number_unsigned() && value.get<std::uint64_t>() > static_cast<std::uint64_t>(max))
+    throw std::invalid_argument(std::string(key) + ": out of range");
+  const std::int64_t v = value.is_number_unsigned()
+                             ? static_cast<std::int64_t>(value.get<std::uint64_t>())
+                             : value.get<std::int64_t>();
+  if (v < min || v > max) throw std::invalid_argument(std::string(key) + ": out of range");
+  return v;
+}
+
+int Int(const json& object, const char* key) {
+  return static_cast<int>(Integer(object.at(key), key, 0, std::numeric_limits<int>::max()));
+}
+
+std::size_t Count(const json& object, const char* key) {
+  return static_cast<std::size_t>(
+      Integer(object.at(key), key, 0, std::numeric_limits<std::int64_t>::max()));
+}
+
+double Real(const json& object, const char* key) {
+  const json& value = object.at(key);
+  if (!value.is_number()) throw std::invalid_argument(std::string(key) + ": expected a number");
+  return value.get<double>();
+}
+
 Pose2D PoseFrom(const json& pose) {
-  return {pose.at(keys::kXM).get<double>(), pose.at(keys::kYM).get<double>(),
-          pose.at(keys::kYawRad).get<double>()};
+  return {Real(pose, keys::kXM), Real(pose, keys::kYM), Real(pose, keys::kYawRad)};
 }
 
 LikelihoodTestResult TestFrom(const json& test) {
   LikelihoodTestResult result;
-  result.valid_pairs = test.at(keys::kValidPairs).get<int>();
-  result.match_pairs = test.at(keys::kMatchPairs).get<int>();
-  result.expect_value_m = test.at(keys::kExpectValueM).get<double>();
-  result.dispersion_m2 = test.at(keys::kDispersionM2).get<double>();
-  result.histogram = test.at(keys::kHistogram).get<std::vector<int>>();
+  result.valid_pairs = Int(test, keys::kValidPairs);
+  result.match_pairs = Int(test, keys::kMatchPairs);
+  result.expect_value_m = Real(test, keys::kExpectValueM);
+  result.dispersion_m2 = Real(test, keys::kDispersionM2);
+  const json& histogram = test.at(keys::kHistogram);
+  if (!histogram.is_array()) throw std::invalid_argument("histogram: expected an array");
+  for (const json& slot : histogram)
+    result.histogram.push_back(
+        static_cast<int>(Integer(slot, keys::kHistogram, 0, std::numeric_limits<int>::max())));
   return result;
 }
 
@@ -36,7 +70,10 @@ Eigen::Matrix3d CovarianceFrom(const json& rows) {
   for (int i = 0; i < 3; ++i) {
     if (!rows[i].is_array() || rows[i].size() != 3)
       throw std::invalid_argument("covariance: 3 columns");
-    for (int j = 0; j < 3; ++j) covariance(i, j) = rows[i][j].get<double>();
+    for (int j = 0; j < 3; ++j) {
+      if (!rows[i][j].is_number()) throw std::invalid_argument("covariance: expected numbers");
+      covariance(i, j) = rows[i][j].get<double>();
+    }
   }
   return covariance;
 }
@@ -74,8 +111,8 @@ void AddOptionalParts(const json& record, RecordedIteration& r) {
 RecordedIteration RecordedFromJson(const json& record) {
   try {
     RecordedIteration r;
-    r.index = record.at(keys::kIndex).get<std::size_t>();
-    r.timestamp_s = record.at(keys::kTimestampS).get<double>();
+    r.index = Count(record, keys::kIndex);
+    r.timestamp_s = Real(record, keys::kTimestampS);
     r.skipped = record.at(keys::kSkipped).get<bool>();
     r.first = record.at(keys::kFirst).get<bool>();
     r.localised = record.contains(keys::kCandidates);
@@ -83,12 +120,12 @@ RecordedIteration RecordedFromJson(const json& record) {
     r.validated = record.at(keys::kValidated).get<bool>();
     r.verdict = VerdictFrom(record.at(keys::kReason).get<std::string>());
     if (r.localised)
-      r.signature_expect_value_m = record.at(keys::kSignatureExpectValueM).get<double>();
+      r.signature_expect_value_m = Real(record, keys::kSignatureExpectValueM);
     r.lost = FlagOr(record, keys::kLost, false);
     r.recovered = FlagOr(record, keys::kRecovered, false);
     r.inserted = record.at(keys::kInserted).get<bool>();
-    r.carved = record.at(keys::kCarved).get<std::size_t>();
-    r.map_points = record.at(keys::kMapPoints).get<std::size_t>();
+    r.carved = Count(record, keys::kCarved);
+    r.map_points = Count(record, keys::kMapPoints);
     AddOptionalParts(record, r);
     return r;
   } catch (const json::exception& e) {
