@@ -56,6 +56,19 @@ TEST_F(LocaliseCliTest, FromNoPostureTheClassroomIsAmbiguousThenFollowsTheSessio
   const std::size_t confirmed = summary["first_confirmed_scan"].get<std::size_t>();
   EXPECT_GE(summary["max_hypotheses"].get<int>(), 2);  // the room turned half a turn
   EXPECT_GE(summary["ambiguous_scans"].get<int>(), 10);
+  // Over time: from the first scan, changes only, the confirmation among them.
+  const auto& series = summary["hypotheses_over_time"];
+  ASSERT_GE(series.size(), 2u) << summary.dump(2);
+  EXPECT_EQ(series.front()["scan"], 0);
+  bool confirmation_listed = false;
+  for (std::size_t i = 1; i < series.size(); ++i) {
+    EXPECT_LT(series[i - 1]["scan"].get<int>(), series[i]["scan"].get<int>());
+    EXPECT_TRUE(series[i - 1]["state"] != series[i]["state"] ||
+                series[i - 1]["hypotheses"] != series[i]["hypotheses"]);
+    confirmation_listed = confirmation_listed || (series[i]["state"] == "confirmed" &&
+                                                  series[i]["scan"].get<std::size_t>() == confirmed);
+  }
+  EXPECT_TRUE(confirmation_listed) << series.dump();
   const auto reference = ReadTum(dir_ + "/session/trajectory.tum");
   const auto found = ReadTum(dir_ + "/localise/trajectory.tum");
   ASSERT_EQ(found.size(), reference.size());
@@ -67,6 +80,9 @@ TEST_F(LocaliseCliTest, FromNoPostureTheClassroomIsAmbiguousThenFollowsTheSessio
   ASSERT_TRUE(report.exited && report.exit_code == 0) << report;
   const std::string page = testing::ReadWholeFile(dir_ + "/localise/report.html");
   EXPECT_TRUE(testing::Contains(page, "ambiguous (2 hypotheses)"));
+  EXPECT_TRUE(testing::Contains(page, "scan 0: ambiguous (2) → scan " + std::to_string(confirmed) +
+                                          ": confirmed (1)"))
+      << "the summary table's hypotheses over time";
   EXPECT_TRUE(testing::Contains(page, "first confirmed scan</th><td>" + std::to_string(confirmed)));
 }
 

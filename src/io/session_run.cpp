@@ -52,6 +52,13 @@ void AddLocalisationSummary(const SessionCounts& c, nlohmann::json& summary) {
   summary["ambiguous_scans"] = c.ambiguous;
   summary["max_hypotheses"] = c.max_hypotheses;
   summary["scans_without_posture"] = c.unposed;
+  nlohmann::json series = nlohmann::json::array();
+  for (const SessionCounts::HypothesesPoint& p : c.hypotheses_over_time)
+    series.push_back({{"scan", p.scan},
+                      {"timestamp_s", p.timestamp_s},
+                      {"state", p.state},
+                      {"hypotheses", p.hypotheses}});
+  summary["hypotheses_over_time"] = series;
   if (!c.first_confirmed) summary["problem"] = "no posture was ever confirmed on the map";
 }
 
@@ -85,6 +92,11 @@ void SessionCounts::Add(const IterationRecord& record) {
     first_confirmed_timestamp_s = record.timestamp_s;
   }
   ambiguous += record.state == "ambiguous";
+  if (!record.state.empty() &&
+      (hypotheses_over_time.empty() || hypotheses_over_time.back().state != record.state ||
+       hypotheses_over_time.back().hypotheses != record.hypotheses.size()))
+    hypotheses_over_time.push_back(
+        {iterations - 1, record.timestamp_s, record.state, record.hypotheses.size()});
   max_hypotheses = std::max(max_hypotheses, record.hypotheses.size());
   unposed += !record.posed;
   if (record.closure) {

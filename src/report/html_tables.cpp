@@ -45,6 +45,20 @@ std::string SummaryValue(const json& value) {
   return value.dump();
 }
 
+// "scan 0: ambiguous (2) → scan 62: confirmed (1)", the first 20 changes.
+std::string HypothesesOverTime(const json& series) {
+  if (!series.is_array()) return SummaryValue(series);
+  std::string text;
+  for (std::size_t i = 0; i < series.size() && i < 20; ++i) {
+    const json& p = series[i];
+    text += (i > 0 ? " → " : "") + std::string("scan ") + SummaryValue(p.value("scan", json())) +
+            ": " + SummaryValue(p.value("state", json())) + " (" +
+            SummaryValue(p.value("hypotheses", json())) + ")";
+  }
+  if (series.size() > 20) text += " … (" + std::to_string(series.size()) + " changes in all)";
+  return text;
+}
+
 std::string VerdictClass(bool valid) {
   return valid ? "valid" : "invalid";
 }
@@ -93,10 +107,13 @@ std::string SummaryTable(const json& summary, const std::vector<IterationRow>& r
                                           {"ambiguous_scans", "ambiguous scans"},
                                           {"max_hypotheses", "hypotheses at most"},
                                           {"scans_without_posture", "scans without a posture"},
+                                          {"hypotheses_over_time", "hypotheses over time"},
                                           {"loop_closure", "loop closure"},
                                           {"problem", "problem"}};
   for (const auto& [key, name] : kKnown)
-    if (const auto it = summary.find(key); it != summary.end()) line(name, SummaryValue(*it));
+    if (const auto it = summary.find(key); it != summary.end())
+      line(name, std::string(key) == "hypotheses_over_time" ? HypothesesOverTime(*it)
+                                                            : SummaryValue(*it));
   if (const auto it = summary.find("inputs"); it != summary.end() && it->is_object())
     for (const auto& [key, value] : it->items()) line("input: " + key, SummaryValue(value));
   out << "</tbody>\n</table>\n";

@@ -10,6 +10,7 @@
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "scanloc/io/run_folder.hpp"
 #include "scanloc/maps/occupancy_grid.hpp"
@@ -40,6 +41,15 @@ struct SessionCounts {
   std::optional<std::size_t> first_confirmed;
   double first_confirmed_timestamp_s = 0.0;
   std::size_t ambiguous = 0, max_hypotheses = 0, unposed = 0;
+  // The hypotheses over time: a point at the first scan and wherever the state or the number of
+  // hypotheses held changed.
+  struct HypothesesPoint {
+    std::size_t scan = 0;
+    double timestamp_s = 0.0;
+    std::string state;
+    std::size_t hypotheses = 0;
+  };
+  std::vector<HypothesesPoint> hypotheses_over_time;
   // Loop closure: closures tried, accepted, and the renders of the map they caused.
   std::size_t closures_tried = 0, closures_accepted = 0, map_renders = 0;
   double first_timestamp_s = 0.0, min_timestamp_s = 0.0, max_timestamp_s = 0.0;
