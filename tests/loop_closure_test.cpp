@@ -29,13 +29,7 @@ Lap DriveRing(const LineMap& world) {
                                                 {2, 2},  {22, 2},  {22, 10}};
   Lap lap;
   lap.truth = FollowWaypoints(Pose2D(2.0, 2.0, 0.0), corners, path);
-  LaserSimulatorOptions laser;
-  laser.beam_count = 181;
-  laser.fov_rad = M_PI;
-  laser.range_max_m = 12.0;
-  laser.reliable_range_m = 12.0;
-  laser.range_noise_m = 0.01;
-  laser.range_noise_per_m = 0.0;
+  const LaserSimulatorOptions laser = testing::RingBuildingLaser();
   std::mt19937 random(11);
   for (const Pose2D& pose : lap.truth)
     lap.scans.push_back(SimulateLaser(world, pose, laser, random));

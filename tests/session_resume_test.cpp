@@ -37,13 +37,7 @@ const Drive& RingDrive() {
     path.step_m = 0.4;
     const std::vector<Pose2D> truth = FollowWaypoints(
         Pose2D(2.0, 2.0, 0.0), {{22, 2}, {22, 14}, {2, 14}, {2, 2}, {10, 2}}, path);
-    LaserSimulatorOptions laser;
-    laser.beam_count = 181;
-    laser.fov_rad = M_PI;
-    laser.range_max_m = 12.0;
-    laser.reliable_range_m = 12.0;
-    laser.range_noise_m = 0.01;
-    laser.range_noise_per_m = 0.0;
+    const LaserSimulatorOptions laser = testing::RingBuildingLaser();
     std::mt19937 random(11);
     Drive d;
     const LineMap world = testing::RingBuilding();

@@ -47,6 +47,17 @@ LineMap RingBuilding() {
   return map;
 }
 
+LaserSimulatorOptions RingBuildingLaser() {
+  LaserSimulatorOptions laser;
+  laser.beam_count = 181;
+  laser.fov_rad = M_PI;
+  laser.range_max_m = 12.0;
+  laser.reliable_range_m = 12.0;
+  laser.range_noise_m = 0.01;
+  laser.range_noise_per_m = 0.0;
+  return laser;
+}
+
 LineMap SmallRoomWithL() {
   LineMap map = RectangleRoom(8.0, 6.0);
   map.segments.push_back({{6.0, 4.0}, {7.0, 4.0}});

@@ -10,6 +10,7 @@
 #include "scanloc/geometry/laser_scan.hpp"
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/simulation/simulated_scan.hpp"
+#include "scanloc/worlds/laser_simulator.hpp"
 
 namespace scanloc::testing {
 
@@ -25,6 +26,8 @@ LineMap SmallRoomWithL();
 // A 24 × 16 m building with a 16 × 8 m block in its middle: a 4 m wide ring corridor, with
 // boxes and recesses along it so that no stretch is a featureless corridor.
 LineMap RingBuilding();
+// The laser driven around it: 181 beams over 180°, 12 m, 1 cm of range noise.
+LaserSimulatorOptions RingBuildingLaser();
 
 // The map seen from T_world_laser with `beams` beams over 360°, with Gaussian range noise of
 // sigma_m drawn from `seed` (none when sigma_m is 0).
