@@ -206,12 +206,19 @@ void RunSequence(const SequenceArguments& a, Config config, const ProcessorMaker
   const PointMap empty_map(config.point_map);
   std::optional<OccupancyGrid> grid;
   if (run.grid && run.grid->scans() > 0) grid = run.grid->Build();
-  if (run.session) {
-    folder.Correct(run.session->CorrectedPostures());
-    if (run.session->pose_graph()) folder.WriteGraph(*run.session->pose_graph());
+  try {
+    if (run.session) {
+      folder.Correct(run.session->CorrectedPostures());
+      if (run.session->pose_graph()) folder.WriteGraph(*run.session->pose_graph());
+    }
+    folder.Finish(run.session ? run.session->point_map() : empty_map, summary,
+                  grid ? &*grid : nullptr);
+  } catch (const std::exception& e) {
+    // A full disk fails the records first, then the files: both are said, the cause first.
+    if (run.counts.failure.empty()) throw;
+    throw std::runtime_error("the run stopped at scan " + std::to_string(run.counts.iterations) +
+                             ": " + run.counts.failure + "; then " + e.what());
   }
-  folder.Finish(run.session ? run.session->point_map() : empty_map, summary,
-                grid ? &*grid : nullptr);
   PrintOutcome(run, summary, folder, grid ? &*grid : nullptr);
   if (run.counts.failure.empty()) WarnIfMostlyUnconfirmed(run.counts, a.strict);
   if (!run.counts.failure.empty())

@@ -92,6 +92,24 @@ TEST_F(ReliabilityCliTest, PointMapWithAHugeHeaderIsRefusedInA2GBAddressSpace) {
   EXPECT_TRUE(Contains(run.err, pcd + ":8: 1050000000 points")) << run;
 }
 
+// The records' write failing (a 16 KiB file size limit: EFBIG, as ENOSPC on a full disk) stops
+// the run with the cause named; the other, smaller files are still written, the summary says
+// failed. (A full disk, where the files then fail too, is scripts/reliability/disk-full.sh's.)
+TEST_F(ReliabilityCliTest, ARecordsWriteFailureStopsTheRunNamingItsCauseAndKeepsTheRest) {
+  const auto run = testing::RunCommand(
+      {"sh", "-c", "trap '' XFSZ && ulimit -f 32 && exec \"$0\" \"$@\"", SCANLOC_BINARY,
+       "session", "--log", kClassroom + "classroom.seq.jsonl", "--line-map",
+       kClassroom + "classroom.lines", "--out", dir_ + "/run", "--quiet"},
+      dir_);
+  ASSERT_TRUE(run.exited) << run;
+  EXPECT_EQ(run.exit_code, 1) << run;
+  EXPECT_TRUE(Contains(run.err, "the run stopped at scan ")) << run;
+  EXPECT_TRUE(Contains(run.err, "cannot write " + dir_ + "/run/iterations.jsonl: File too large"))
+      << run;
+  const std::string summary = testing::ReadWholeFile(dir_ + "/run/summary.json");
+  EXPECT_TRUE(Contains(summary, "\"failed\": \"cannot write ")) << summary;
+}
+
 TEST_F(ReliabilityCliTest, SessionOnAZeroFilledLogFailsNamingTheFormatsAccepted) {
   const std::string log = Write("garbage.clf", std::string(1000, '\0'));
   const auto run = Run({"session", "--log", log, "--out", dir_ + "/run", "--quiet"});
