@@ -4,6 +4,7 @@
 # grows). Prints each target's executions and coverage; exits non-zero when a target crashed,
 # leaked, timed out or ran out of memory, naming the reproducer (kept in build-fuzz/artifacts/).
 #   scripts/fuzz.sh SECONDS [TARGET...]     e.g. scripts/fuzz.sh 60 scan_file pcd
+# SCANLOC_FUZZ_NO_BUILD=1 skips the build and runs the fuzzers already in build-fuzz/.
 # Replay a reproducer: build-fuzz/fuzz/<target>_fuzzer FILE
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -11,23 +12,25 @@ seconds=${1:?usage: scripts/fuzz.sh SECONDS [TARGET...]}
 shift
 build_dir=build-fuzz
 
-# The library's own packages, then clang with libFuzzer and the sanitizer runtimes.
-bash scripts/install-deps.sh
-if ! command -v clang++ >/dev/null || ! dpkg-query -W -f='${Status}' libclang-rt-14-dev 2>/dev/null |
-  grep -q "install ok installed"; then
-  sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  echo "fuzz: installing clang and its libFuzzer runtime"
-  $sudo apt-get update -q
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends clang \
-    libclang-rt-14-dev
-fi
+if [ "${SCANLOC_FUZZ_NO_BUILD:-0}" != 1 ]; then
+  # The library's own packages, then clang with libFuzzer and the sanitizer runtimes.
+  bash scripts/install-deps.sh
+  if ! command -v clang++ >/dev/null || ! dpkg-query -W -f='${Status}' libclang-rt-14-dev 2>/dev/null |
+    grep -q "install ok installed"; then
+    sudo=""
+    [ "$(id -u)" -eq 0 ] || sudo="sudo"
+    echo "fuzz: installing clang and its libFuzzer runtime"
+    $sudo apt-get update -q
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends clang \
+      libclang-rt-14-dev
+  fi
 
-# -O1 without NDEBUG: sanitizer reports with usable stacks, Eigen's assertions on.
-cmake -S . -B "$build_dir" -DSCANLOC_FUZZ=ON -DSCANLOC_BUILD_TESTS=OFF \
-  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" >/dev/null
-nice -n 10 cmake --build "$build_dir" --target scanloc_fuzzers -j"$(nproc)"
+  # -O1 without NDEBUG: sanitizer reports with usable stacks, Eigen's assertions on.
+  cmake -S . -B "$build_dir" -DSCANLOC_FUZZ=ON -DSCANLOC_BUILD_TESTS=OFF \
+    -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" >/dev/null
+  nice -n 10 cmake --build "$build_dir" --target scanloc_fuzzers -j"$(nproc)"
+fi
 
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
