@@ -19,9 +19,11 @@ shift $(($# < 3 ? $# : 3))
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-cpu() { awk '{print $1 + $2}' "$1"; }  # user + system seconds, from /usr/bin/time -f '%U %S'
-/usr/bin/time -f '%U %S' -o "$work/whole.time" \
-  "$scanloc" session --log "$log" --out "$work/whole" --quiet "$@" >/dev/null
+# User + system seconds of a command, by bash's own `time` (no /usr/bin/time on a fresh machine).
+TIMEFORMAT='%U %S'
+cpu() { awk '{print $1 + $2}' "$1"; }
+{ time "$scanloc" session --log "$log" --out "$work/whole" --quiet "$@" >/dev/null \
+  2>"$work/whole.err"; } 2>"$work/whole.time" || { cat "$work/whole.err"; exit 1; }
 total=$(wc -l <"$work/whole/iterations.jsonl")
 kill_at=$(awk -v t="$total" -v f="$fraction" 'BEGIN {printf "%d", t * f}')
 
@@ -42,8 +44,8 @@ for file in summary.json trajectory.tum map.pcd; do
   [ ! -e "$work/killed/$file" ] || { echo "kill-resume: the killed run wrote $file"; exit 1; }
 done
 
-/usr/bin/time -f '%U %S' -o "$work/resume.time" \
-  "$scanloc" session --log "$log" --out "$work/killed" --quiet --resume "$@" >/dev/null
+{ time "$scanloc" session --log "$log" --out "$work/killed" --quiet --resume "$@" >/dev/null \
+  2>"$work/resume.err"; } 2>"$work/resume.time" || { cat "$work/resume.err"; exit 1; }
 
 status=0
 for file in trajectory.tum map.pcd map.pgm map.yaml run.json; do
