@@ -191,6 +191,22 @@ TEST_F(G2oFileTest, AGraphReadsBackExactlyWithClosuresKnownByTheirGap) {
   EXPECT_NE(text.find("\nFIX 0\n"), std::string::npos);
 }
 
+TEST_F(G2oFileTest, ClosuresTheGraphSetAsideAreNotWritten) {
+  const std::vector<Pose2D> truth = SquareLoop();
+  PoseGraph graph = DriftingLoop(truth);
+  graph.AddEdge(TrueClosure(truth, 40, 0));
+  // Node 25 claimed to lie 0.5 m in front of node 5: they are 10 m apart.
+  graph.AddEdge({5, 25, Pose2D(0.5, 0.0, 0.0), Information(0.02, 0.005), EdgeKind::kClosure});
+  graph.Optimise();
+  ASSERT_FALSE(graph.edges().back().active);  // the wrong closure was set aside
+  const std::string path = (directory_ / "loop.g2o").string();
+  WriteG2o(graph, path);
+  const PoseGraph read = ReadG2o(path);
+  ASSERT_EQ(read.edges().size(), graph.edges().size() - 1);
+  EXPECT_EQ(read.edges().back().from, 40u);  // the true closure 40 -> 0 stays
+  EXPECT_EQ(read.edges().back().to, 0u);
+}
+
 TEST_F(G2oFileTest, MalformedGraphsAreRefusedWithTheirLine) {
   const std::string vertices = "VERTEX_SE2 0 0 0 0\nVERTEX_SE2 1 1 0 0\n";
   const std::vector<std::pair<std::string, std::size_t>> cases = {

@@ -76,6 +76,7 @@ void WriteG2o(const PoseGraph& graph, const std::string& path, std::size_t fixed
           << '\n';
     }
     for (const PoseGraphEdge& edge : graph.edges()) {
+      if (!edge.active) continue;  // a closure the graph set aside: a reader would believe it
       const Eigen::Matrix3d& info = edge.information;
       out << "EDGE_SE2 " << edge.from << ' ' << edge.to << ' ' << edge.T_from_to.x_m << ' '
           << edge.T_from_to.y_m << ' ' << edge.T_from_to.yaw_rad << ' ' << info(0, 0) << ' '

@@ -12,7 +12,9 @@
 
 namespace scanloc {
 
-// Writes `graph` to `path` whole or not at all, with `fixed_node` as its FIX line.
+// Writes `graph` to `path` whole or not at all, with `fixed_node` as its FIX line. Closures the
+// graph set aside (inactive edges) are left out: g2o, GTSAM or ReadG2o would take them for
+// measurements; iterations.jsonl keeps every closure tried.
 void WriteG2o(const PoseGraph& graph, const std::string& path, std::size_t fixed_node = 0);
 
 // Reads a g2o SE(2) graph. Vertex ids must run 0, 1, 2, … in the order written; edges name known
