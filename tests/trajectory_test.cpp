@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "scanloc/common/parse_error.hpp"
@@ -143,9 +144,42 @@ TEST(Trajectory, CorrectedPosesErrorsNameFileAndLine) {
   EXPECT_NE(message.find("4 fields"), std::string::npos) << message;
 }
 
+TEST(Trajectory, ReferencePosesAreReadInEitherFormatToTheSamePoses) {
+  const std::string dir = testing::TemporaryDir();
+  const std::string corrected =
+      WriteText(dir + "/a.txt", "# t x y theta\n1.5 2 3 0.5\n2.5 -1 0.25 -0.5\n");
+  const std::vector<StampedPose> written = ReadCorrectedPoses(corrected);
+  WriteTumTrajectory(dir + "/a.tum", written);
+  for (const std::string& path : {corrected, dir + "/a.tum"}) {
+    const std::vector<StampedPose> poses = ReadReferencePoses(path);
+    ASSERT_EQ(poses.size(), 2u) << path;
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      EXPECT_NEAR(poses[i].timestamp_s, written[i].timestamp_s, kTimestampTolerance) << path;
+      EXPECT_NEAR(poses[i].pose.x_m, written[i].pose.x_m, kPositionTolerance) << path;
+      EXPECT_NEAR(poses[i].pose.y_m, written[i].pose.y_m, kPositionTolerance) << path;
+      EXPECT_NEAR(poses[i].pose.yaw_rad, written[i].pose.yaw_rad, kYawTolerance) << path;
+    }
+  }
+}
+
+TEST(Trajectory, ReferencePosesOfNeitherOrOfMixedFormatsAreRefusedWithTheirLine) {
+  const std::string dir = testing::TemporaryDir();
+  const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
+      {"1.0 0 0 0 0\n", "r.txt:1:", "4 fields 'timestamp x y theta' or 8 fields"},
+      {"1.0 0 0 0\n2.0 0 0 0 0 0 0 1\n", "r.txt:2:", "expected 4 fields"},
+      {"1.0 0 0 0 0 0 0 1\n2.0 0 0 0\n", "r.txt:2:", "expected 8 fields"},
+  };
+  for (const auto& [text, where, expected] : cases) {
+    const std::string path = WriteText(dir + "/r.txt", text);
+    const std::string message = ParseErrorMessage([&] { ReadReferencePoses(path); });
+    EXPECT_NE(message.find(where), std::string::npos) << text << " -> " << message;
+    EXPECT_NE(message.find(expected), std::string::npos) << text << " -> " << message;
+  }
+}
+
 TEST(Trajectory, MissingFilesThrowRuntimeErrorWithThePath) {
   const std::string path = testing::TemporaryDir() + "/absent.txt";
-  for (auto read : {&ReadTumTrajectory, &ReadCorrectedPoses}) {
+  for (auto read : {&ReadTumTrajectory, &ReadCorrectedPoses, &ReadReferencePoses}) {
     try {
       read(path);
       ADD_FAILURE() << "expected std::runtime_error";

@@ -54,4 +54,8 @@ std::vector<StampedPose> ReadTumTrajectory(const std::string& path);
 // same errors as ReadTumTrajectory.
 std::vector<StampedPose> ReadCorrectedPoses(const std::string& path);
 
+// Reads reference poses in either format, told apart by the first data line: 4 fields are
+// corrected poses, 8 a TUM trajectory; every line must then have as many. Same errors.
+std::vector<StampedPose> ReadReferencePoses(const std::string& path);
+
 }  // namespace scanloc
