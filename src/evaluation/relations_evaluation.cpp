@@ -118,7 +118,8 @@ RelationsEvaluation EvaluateRelations(const std::vector<StampedPose>& trajectory
   RelationsEvaluation evaluation;
   std::vector<double> translations_m, rotations_deg, translations_squared_m2,
       rotations_squared_deg2;
-  for (const Relation& relation : relations) {
+  for (std::size_t r = 0; r < relations.size(); ++r) {
+    const Relation& relation = relations[r];
     const std::optional<Pose2D> T_w_1 = index.Find(relation.t1_s, options.timestamp_tolerance_s);
     const std::optional<Pose2D> T_w_2 = index.Find(relation.t2_s, options.timestamp_tolerance_s);
     if (!T_w_1 || !T_w_2) {
@@ -128,6 +129,7 @@ RelationsEvaluation EvaluateRelations(const std::vector<StampedPose>& trajectory
     // δ ⊖ δ*: the estimated relative motion seen from the true one.
     const Pose2D error = Between(relation.T_1_2, Between(*T_w_1, *T_w_2));
     evaluation.errors.push_back(error);
+    evaluation.matched_relations.push_back(r);
     const double translation_m = error.Translation().norm();
     const double rotation_deg = std::abs(NormalizeAngle(error.yaw_rad)) * kDegreesPerRadian;
     translations_m.push_back(translation_m);

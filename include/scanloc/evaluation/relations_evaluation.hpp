@@ -41,10 +41,12 @@ struct RelationsEvaluation {
   std::size_t unmatched = 0;
   std::vector<Relation> unmatched_relations;  // those with t1 or t2 absent from the trajectory
   std::vector<Pose2D> errors;                 // per matched relation, in the relations' order
-  ErrorStatistics translation_m;              // |t(e)|
-  ErrorStatistics rotation_deg;               // |θ(e)|
-  ErrorStatistics translation_squared_m2;     // |t(e)|²
-  ErrorStatistics rotation_squared_deg2;      // θ(e)²
+  // errors[k] belongs to relations[matched_relations[k]].
+  std::vector<std::size_t> matched_relations;
+  ErrorStatistics translation_m;           // |t(e)|
+  ErrorStatistics rotation_deg;            // |θ(e)|
+  ErrorStatistics translation_squared_m2;  // |t(e)|²
+  ErrorStatistics rotation_squared_deg2;   // θ(e)²
 };
 
 // For each relation δ*, the error e = δ ⊖ δ* = Between(δ*, δ), where δ = Between(est(t1), est(t2))
