@@ -39,10 +39,33 @@ TEST(ClosureReport, AnAcceptedClosureIsReadBackWithTheOldScanAndOthersAreNot) {
   accepted.closure = Closure(2, true);
   pending.closure = Closure(3, false);
   const IterationRow row = IterationRowFromJson(ToJson(accepted).dump());
-  ASSERT_TRUE(row.closed_with.has_value());
-  EXPECT_EQ(*row.closed_with, 2u);
-  EXPECT_FALSE(IterationRowFromJson(ToJson(pending).dump()).closed_with.has_value());
-  EXPECT_FALSE(IterationRowFromJson(ToJson(Walked(14)).dump()).closed_with.has_value());
+  ASSERT_TRUE(row.closed_with().has_value());
+  EXPECT_EQ(*row.closed_with(), 2u);
+  EXPECT_FALSE(IterationRowFromJson(ToJson(pending).dump()).closed_with().has_value());
+  EXPECT_FALSE(IterationRowFromJson(ToJson(Walked(14)).dump()).closed_with().has_value());
+}
+
+TEST(ClosureReport, AClosuresMeasurementIsReadBackOnlyWhenAPostureWasRefined) {
+  IterationRecord measured = Walked(12), unmeasured = Walked(13);
+  measured.closure = Closure(2, false);
+  measured.closure->node = 7;
+  measured.closure->old_node = 1;
+  measured.closure->T_old_robot = Pose2D(4.5, -0.25, 0.125);
+  measured.closure->test = LikelihoodTestResult{};
+  unmeasured.closure = Closure(3, false);
+  unmeasured.closure->reason = "nothing was refined";
+  const IterationRow row = IterationRowFromJson(ToJson(measured).dump());
+  ASSERT_TRUE(row.closure.has_value());
+  EXPECT_EQ(row.closure->node, 7u);
+  EXPECT_EQ(row.closure->old_node, 1u);
+  EXPECT_EQ(row.closure->old_iteration, 2u);
+  EXPECT_EQ(row.closure->reason, "pending: 1 of 3 agreeing scans");
+  ASSERT_TRUE(row.closure->T_old_robot.has_value());
+  EXPECT_EQ(row.closure->T_old_robot->x_m, 4.5);
+  EXPECT_EQ(row.closure->T_old_robot->yaw_rad, 0.125);
+  const IterationRow none = IterationRowFromJson(ToJson(unmeasured).dump());
+  ASSERT_TRUE(none.closure.has_value());
+  EXPECT_FALSE(none.closure->T_old_robot.has_value());
 }
 
 TEST(ClosureReport, AClosureWithANegativeOldScanIsRefusedNamingTheField) {
@@ -76,7 +99,7 @@ TEST(ClosureReport, TheTrajectoryFigureDrawsAcceptedClosuresWithTheirLegend) {
        at = svg.find(figure_style::kClosure, at + 1))
     ++strokes;
   EXPECT_EQ(strokes, 2u);
-  rows[15].closed_with.reset();
+  rows[15].closure.reset();
   EXPECT_FALSE(testing::Contains(TrajectoryFigure(input, "none"), "loop closures"));
 }
 

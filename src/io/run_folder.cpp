@@ -46,12 +46,12 @@ nlohmann::json ClosureJson(const ClosureAttempt& c) {
                         {keys::kPathSinceM, c.path_since_m},
                         {keys::kHalfWidthM, c.window.half_width_m},
                         {keys::kHalfYawRad, c.window.half_yaw_rad},
-                        {keys::kMatched, ToJson(c.T_world_robot_matched)},
-                        {keys::kTOldRobot, ToJson(c.T_old_robot)},
                         {keys::kLargestShiftM, c.largest_shift_m},
                         {keys::kRendered, c.rendered},
                         {keys::kTimeS, c.time_s}};
-  if (c.test) {
+  if (c.test) {  // something was refined: the posture matched and the closure's measurement
+    out[keys::kMatched] = ToJson(c.T_world_robot_matched);
+    out[keys::kTOldRobot] = ToJson(c.T_old_robot);
     out[keys::kExpectValueM] = c.test->expect_value_m;
     out[keys::kMatchRatio] = c.test->MatchRatio();
   }

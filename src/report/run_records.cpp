@@ -185,15 +185,27 @@ RefinedCandidateRow RefinedCandidateFrom(const json& value, const std::string& p
   return r;
 }
 
-// The old scan an accepted loop closure closed with, when the record tried one that was accepted.
-std::optional<std::size_t> ClosedWith(const json& record) {
+std::size_t RequiredCount(const json& object, const std::string& key, const std::string& path) {
+  const json& value = Required(object, key, path, "a whole number");
+  if (!value.is_number_unsigned()) Fail(Join(path, key), "a whole number");
+  return value.get<std::size_t>();
+}
+
+// The loop closure tried after the record's scan, if any.
+std::optional<ClosureRow> ClosureFrom(const json& record) {
   const auto it = record.find(keys::kClosure);
   if (it == record.end()) return std::nullopt;
   if (!it->is_object()) Fail(keys::kClosure, "an object");
-  if (!RequiredBool(*it, keys::kAccepted, keys::kClosure)) return std::nullopt;
-  const json& old = Required(*it, keys::kOldIteration, keys::kClosure, "a whole number");
-  if (!old.is_number_unsigned()) Fail(Join(keys::kClosure, keys::kOldIteration), "a whole number");
-  return old.get<std::size_t>();
+  ClosureRow closure;
+  closure.accepted = RequiredBool(*it, keys::kAccepted, keys::kClosure);
+  closure.reason = OptionalString(*it, keys::kReason, keys::kClosure);
+  closure.old_iteration = RequiredCount(*it, keys::kOldIteration, keys::kClosure);
+  closure.node = RequiredCount(*it, keys::kNode, keys::kClosure);
+  closure.old_node = RequiredCount(*it, keys::kOldNode, keys::kClosure);
+  // Only with the refinement's test: older run folders wrote an identity when nothing was refined.
+  if (it->contains(keys::kExpectValueM))
+    closure.T_old_robot = OptionalPose(*it, keys::kTOldRobot, keys::kClosure);
+  return closure;
 }
 
 IterationRow RowFrom(const json& record) {
@@ -233,7 +245,7 @@ IterationRow RowFrom(const json& record) {
   row.searched = record.contains(keys::kSearch);
   row.state = OptionalString(record, keys::kState, "");
   row.posed = !record.contains(keys::kPosed) || OptionalBool(record, keys::kPosed, "");
-  row.closed_with = ClosedWith(record);
+  row.closure = ClosureFrom(record);
   if (record.contains(keys::kHypotheses))
     row.hypotheses = RequiredArray(record, keys::kHypotheses, "", "an array of hypotheses").size();
   if (record.contains(keys::kProblems)) {
@@ -260,6 +272,11 @@ const char* IterationRow::status() const {
   if (first) return "first";
   if (skipped) return "skipped";
   return validated ? "validated" : "flagged";
+}
+
+std::optional<std::size_t> IterationRow::closed_with() const {
+  if (!closure || !closure->accepted) return std::nullopt;
+  return closure->old_iteration;
 }
 
 const CandidateRow* IterationRow::chosen_candidate() const {

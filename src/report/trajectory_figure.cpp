@@ -1,6 +1,7 @@
 #include "scanloc/report/trajectory_figure.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <stdexcept>
 
 #include "scanloc/report/figure_style.hpp"
@@ -59,14 +60,14 @@ void MarkStartAndEnd(SvgCanvas& svg, LabelPlacer& labels, const Eigen::Vector2d&
 
 void DrawClosures(SvgCanvas& svg, const MapFrame& frame, const std::vector<IterationRow>& rows) {
   for (const IterationRow& row : rows)
-    if (row.closed_with && *row.closed_with < rows.size())
-      svg.Line(frame.ToPixel(rows[*row.closed_with].T_world_robot.Translation()),
+    if (const std::optional<std::size_t> old = row.closed_with(); old && *old < rows.size())
+      svg.Line(frame.ToPixel(rows[*old].T_world_robot.Translation()),
                frame.ToPixel(row.T_world_robot.Translation()), style::kClosure, 1.6);
 }
 
 bool HasClosures(const std::vector<IterationRow>& rows) {
   return std::any_of(rows.begin(), rows.end(),
-                     [](const IterationRow& row) { return row.closed_with.has_value(); });
+                     [](const IterationRow& row) { return row.closed_with().has_value(); });
 }
 
 bool TrajectoryCloseUpWorthwhile(const TrajectoryFigureInput& input) {

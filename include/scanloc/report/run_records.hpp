@@ -47,6 +47,16 @@ struct RefinedCandidateRow {
   int rank = -1;
 };
 
+// A loop closure tried after a scan (a session run with loop closure on).
+struct ClosureRow {
+  bool accepted = false;  // it confirmed a batch of agreeing closures
+  std::string reason;     // "accepted", or why not
+  std::size_t node = 0, old_node = 0, old_iteration = 0;
+  // The closure's measurement, the scan seen from the old scan: present when a posture was
+  // refined against the old part of the map.
+  std::optional<Pose2D> T_old_robot;
+};
+
 struct IterationRow {
   std::size_t index = 0;
   double timestamp_s = 0.0;
@@ -75,8 +85,7 @@ struct IterationRow {
   std::string state;
   std::size_t hypotheses = 0;
   bool posed = true;  // false: no posture (a localisation still searching)
-  // An accepted loop closure after this scan: the index of the old scan it closed with.
-  std::optional<std::size_t> closed_with;
+  std::optional<ClosureRow> closure;
 
   // Localised but not validated: what the operator should look at.
   bool flagged() const { return !skipped && !first && !validated; }
@@ -84,6 +93,8 @@ struct IterationRow {
   const char* status() const;
   // The chosen candidate, or nullptr.
   const CandidateRow* chosen_candidate() const;
+  // The old scan an accepted loop closure after this scan closed with.
+  std::optional<std::size_t> closed_with() const;
 };
 
 // Reads one record; throws std::runtime_error saying which field is missing or of the wrong type
