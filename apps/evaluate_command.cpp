@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "evaluate_closures.hpp"
 #include "scanloc/evaluation/relations_evaluation.hpp"
 #include "scanloc/io/trajectory.hpp"
 
@@ -44,6 +45,33 @@ std::runtime_error NothingMatched(const std::vector<StampedPose>& trajectory,
       "). Are they from the same log, and is --tolerance large enough?");
 }
 
+// The relations metric's counts and statistics, as text or JSON.
+void PrintRelationsEvaluation(const RelationsEvaluation& e, bool json) {
+  auto stats = [](const ErrorStatistics& s) {
+    return nlohmann::json{{"mean", s.mean}, {"std", s.std}, {"max", s.max}};
+  };
+  if (json) {
+    std::cout << nlohmann::json{{"matched", e.matched},
+                                {"unmatched", e.unmatched},
+                                {"translation_m", stats(e.translation_m)},
+                                {"rotation_deg", stats(e.rotation_deg)},
+                                {"translation_squared_m2", stats(e.translation_squared_m2)},
+                                {"rotation_squared_deg2", stats(e.rotation_squared_deg2)}}
+                     .dump(2)
+              << '\n';
+    return;
+  }
+  std::printf("relations: %zu matched, %zu unmatched\n", e.matched, e.unmatched);
+  std::printf("translation [m]     %.4f ± %.4f (max %.4f)\n", e.translation_m.mean,
+              e.translation_m.std, e.translation_m.max);
+  std::printf("translation² [m²]   %.5f ± %.5f (max %.5f)\n", e.translation_squared_m2.mean,
+              e.translation_squared_m2.std, e.translation_squared_m2.max);
+  std::printf("rotation [deg]      %.3f ± %.3f (max %.3f)\n", e.rotation_deg.mean,
+              e.rotation_deg.std, e.rotation_deg.max);
+  std::printf("rotation² [deg²]    %.3f ± %.3f (max %.3f)\n", e.rotation_squared_deg2.mean,
+              e.rotation_squared_deg2.std, e.rotation_squared_deg2.max);
+}
+
 }  // namespace
 
 void RegisterEvaluateCommand(CLI::App& app) {
@@ -51,19 +79,51 @@ void RegisterEvaluateCommand(CLI::App& app) {
     std::string trajectory_path, relations_path;
     double tolerance_s = 1e-3;
     bool json = false;
+    ClosureEvaluationArguments closures;
   };
   auto a = std::make_shared<Arguments>();
   CLI::App* command = app.add_subcommand(
-      "evaluate", "score a TUM trajectory on ground-truth relations (Kümmerle et al. 2009)");
-  command->add_option("--trajectory", a->trajectory_path, "TUM trajectory")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--relations", a->relations_path, "relations file: t1 t2 x y z r p yaw")
-      ->required()
-      ->check(CLI::ExistingFile);
+      "evaluate",
+      "score a TUM trajectory on ground-truth relations (Kümmerle et al. 2009), or a session's "
+      "loop closures on reference poses");
+  CLI::Option* trajectory_option =
+      command->add_option("--trajectory", a->trajectory_path, "TUM trajectory")
+          ->check(CLI::ExistingFile);
+  CLI::Option* relations_option =
+      command->add_option("--relations", a->relations_path, "relations file: t1 t2 x y z r p yaw")
+          ->check(CLI::ExistingFile);
+  trajectory_option->needs(relations_option);
+  relations_option->needs(trajectory_option);
+  CLI::Option* closures =
+      command
+          ->add_option("--closures", a->closures.run_folder,
+                       "a session's run folder (loop_closure.enabled=true): score its closures")
+          ->check(CLI::ExistingDirectory)
+          ->excludes(trajectory_option)
+          ->excludes(relations_option);
+  CLI::Option* reference =
+      command
+          ->add_option("--reference", a->closures.reference_path,
+                       "reference poses for --closures: t x y theta (corrected poses) or TUM")
+          ->check(CLI::ExistingFile);
+  closures->needs(reference);
+  reference->needs(closures);
+  command
+      ->add_option("--max-error-m", a->closures.max_error_m,
+                   "with --closures: a closure within this and --max-error-deg is right")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--max-error-deg", a->closures.max_error_deg, "see --max-error-m")
+      ->check(CLI::PositiveNumber);
   command->add_option("--tolerance", a->tolerance_s, "timestamp matching tolerance (s)");
   command->add_flag("--json", a->json, "print JSON");
   command->final_callback([a] {
+    if (!a->closures.run_folder.empty()) {
+      a->closures.tolerance_s = a->tolerance_s;
+      a->closures.json = a->json;
+      return EvaluateRunClosures(a->closures);
+    }
+    if (a->trajectory_path.empty())
+      throw CLI::RequiredError("--trajectory and --relations, or --closures and --reference,");
     const auto trajectory = ReadTumTrajectory(a->trajectory_path);
     const auto relations = ReadRelations(a->relations_path);
     RelationsEvaluationOptions options;
@@ -73,29 +133,7 @@ void RegisterEvaluateCommand(CLI::App& app) {
       std::cerr << "warning: " << a->trajectory_path << ": " << backwards
                 << " timestamps go backwards or repeat the previous one\n";
     if (e.matched == 0) throw NothingMatched(trajectory, relations, a->tolerance_s);
-    auto stats = [](const ErrorStatistics& s) {
-      return nlohmann::json{{"mean", s.mean}, {"std", s.std}, {"max", s.max}};
-    };
-    if (a->json) {
-      std::cout << nlohmann::json{{"matched", e.matched},
-                                  {"unmatched", e.unmatched},
-                                  {"translation_m", stats(e.translation_m)},
-                                  {"rotation_deg", stats(e.rotation_deg)},
-                                  {"translation_squared_m2", stats(e.translation_squared_m2)},
-                                  {"rotation_squared_deg2", stats(e.rotation_squared_deg2)}}
-                       .dump(2)
-                << '\n';
-      return;
-    }
-    std::printf("relations: %zu matched, %zu unmatched\n", e.matched, e.unmatched);
-    std::printf("translation [m]     %.4f ± %.4f (max %.4f)\n", e.translation_m.mean,
-                e.translation_m.std, e.translation_m.max);
-    std::printf("translation² [m²]   %.5f ± %.5f (max %.5f)\n", e.translation_squared_m2.mean,
-                e.translation_squared_m2.std, e.translation_squared_m2.max);
-    std::printf("rotation [deg]      %.3f ± %.3f (max %.3f)\n", e.rotation_deg.mean,
-                e.rotation_deg.std, e.rotation_deg.max);
-    std::printf("rotation² [deg²]    %.3f ± %.3f (max %.3f)\n", e.rotation_squared_deg2.mean,
-                e.rotation_squared_deg2.std, e.rotation_squared_deg2.max);
+    PrintRelationsEvaluation(e, a->json);
   });
 }
 
