@@ -346,6 +346,20 @@ TEST_F(ReportTest, ALineThatIsNotJsonIsReportedWithFileAndLine) {
   }
 }
 
+TEST_F(ReportTest, ANumberBeyondADoubleIsReportedWithFileAndLine) {
+  std::string bad = ToJson(Localised(1, true)).dump();
+  const std::string x = "\"x_m\":";
+  bad.replace(bad.find(x), x.size(), x + "1e400,\"was_x_m\":");
+  const std::string path =
+      Write("iterations.jsonl", ToJson(Localised(0, true)).dump() + "\n" + bad + "\n");
+  try {
+    ReadIterationRows(path);
+    FAIL() << "a number beyond a double was read";
+  } catch (const ParseError& e) {
+    EXPECT_TRUE(Contains(e.what(), path + ":2: expected one JSON object per line")) << e.what();
+  }
+}
+
 TEST_F(ReportTest, AFieldOfTheWrongTypeIsNamedWithItsPathFileAndLine) {
   nlohmann::json bad = ToJson(Localised(1, true));
   bad["candidates"][1]["likelihood_test"]["histogram"] = "many";

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "scanloc/common/bounded_line.hpp"
 #include "scanloc/common/parse_error.hpp"
 #include "scanloc/io/record_keys.hpp"
 
@@ -289,7 +290,7 @@ IterationRow IterationRowFromJson(const std::string& json_text) {
   json record;
   try {
     record = json::parse(json_text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // a syntax error, or a number beyond a double
     throw std::runtime_error(std::string("expected one JSON object per line: ") + e.what());
   }
   return RowFrom(record);
@@ -300,9 +301,7 @@ IterationRows ReadIterationRows(const std::string& path) {
   if (!in) throw std::runtime_error("cannot open " + path);
   IterationRows result;
   std::string text;
-  std::size_t line = 0;
-  while (std::getline(in, text)) {
-    ++line;
+  for (std::size_t line = 1; ReadBoundedLine(in, text, path, line); ++line) {
     if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
     const bool last_without_newline = in.eof();
     IterationRow row;
