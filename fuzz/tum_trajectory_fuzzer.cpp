@@ -1,5 +1,6 @@
-// ReadTumTrajectory (`t x y z qx qy qz qw`) and ReadCorrectedPoses (`t x y theta`) on the same
-// arbitrary bytes; every pose they return must be finite.
+// ReadTumTrajectory (`t x y z qx qy qz qw`), ReadCorrectedPoses (`t x y theta`) and
+// ReadReferencePoses (either, told apart by the first line) on the same arbitrary bytes; every pose
+// they return must be finite.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -29,6 +30,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   scanloc::fuzz::AcceptDocumentedErrors([&] {
     RequireFinite(scanloc::ReadCorrectedPoses(path),
                   "ReadCorrectedPoses returned a non-finite pose");
+  });
+  scanloc::fuzz::AcceptDocumentedErrors([&] {
+    RequireFinite(scanloc::ReadReferencePoses(path),
+                  "ReadReferencePoses returned a non-finite pose");
   });
   return 0;
 }
