@@ -12,6 +12,7 @@
 #include "scanloc/io/sequence_sources.hpp"
 #include "scanloc/io/trajectory.hpp"
 #include "scanloc/maps/point_map_io.hpp"
+#include "scanloc/report/run_records.hpp"
 #include "test_support.hpp"
 
 namespace scanloc {
@@ -85,6 +86,19 @@ TEST(FuzzReproducers, AHugeQuaternionGivesAFiniteHeading) {
       ReadTumTrajectory(kCrashes + "tum_trajectory/hand-made-huge-quaternion-nan-yaw.tum");
   ASSERT_FALSE(poses.empty());
   for (const StampedPose& pose : poses) EXPECT_TRUE(std::isfinite(pose.pose.yaw_rad));
+}
+
+// C11: a record whose map_points is 3.8e72 was cast to size_t (undefined); now refused with the
+// field, the file and the line.
+TEST(FuzzReproducers, ARecordCountBeyondItsTypeIsAParseErrorNamingTheField) {
+  const std::string path = kCrashes + "run_records/map-points-beyond-size-t-casts-undefined";
+  try {
+    ReadIterationRows(path);
+    FAIL() << "the record was read";
+  } catch (const ParseError& e) {
+    EXPECT_NE(std::string(e.what()).find("map_points: expected a whole number"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

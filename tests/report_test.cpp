@@ -324,8 +324,7 @@ TEST_F(ReportTest, LostRecoveredAndTheLaserSignatureAreReadBackAndDrawn) {
   EXPECT_NEAR(read.rows[1].signature_expect_value_m.value(), 0.14, 1e-12);
   EXPECT_NEAR(read.rows[1].max_expect_value_m.value(), 0.1, 1e-12);
   const std::string svg = MomentSeriesFigure(read.rows, ValidationOptions{}, "m");
-  EXPECT_TRUE(Contains(svg, "laser signature"))
-      << svg;
+  EXPECT_TRUE(Contains(svg, "laser signature")) << svg;
   EXPECT_TRUE(Contains(svg, "#7b4fb0"));
   // Without the field (older run folders) there is no such line.
   IterationRows old = read;
@@ -357,6 +356,38 @@ TEST_F(ReportTest, ANumberBeyondADoubleIsReportedWithFileAndLine) {
     FAIL() << "a number beyond a double was read";
   } catch (const ParseError& e) {
     EXPECT_TRUE(Contains(e.what(), path + ":2: expected one JSON object per line")) << e.what();
+  }
+}
+
+TEST_F(ReportTest, AWholeNumberBeyondWhatItsFieldHoldsIsRefusedNamingTheField) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"map_points", "1e300"},
+      {"map_points", "18446744073709551615"},
+      {"histogram", "4294967296"},
+      {"rank", "2147483648"},
+  };
+  for (const auto& [field, number] : cases) {
+    nlohmann::json record = ToJson(Localised(0, true));
+    if (field == "histogram")
+      record["candidates"][0]["likelihood_test"]["histogram"][0] = 0;
+    else if (field == "rank")
+      record["candidates"][0]["rank"] = 0;
+    else
+      record[field] = 0;
+    std::string text = record.dump();
+    const std::string zero = field == "histogram" ? "\"histogram\":[0" : "\"" + field + "\":0";
+    ASSERT_NE(text.find(zero), std::string::npos) << text;
+    text.replace(text.find(zero), zero.size(),
+                 field == "histogram" ? "\"histogram\":[" + number : "\"" + field + "\":" + number);
+    const std::string path = Write("iterations.jsonl", text + "\n");
+    try {
+      ReadIterationRows(path);
+      ADD_FAILURE() << field << " = " << number << " was read";
+    } catch (const ParseError& e) {
+      EXPECT_TRUE(Contains(e.what(), field + ": expected a whole number from 0 to") ||
+                  Contains(e.what(), field + ": expected a whole number from -2147483648"))
+          << e.what();
+    }
   }
 }
 

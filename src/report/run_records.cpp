@@ -1,6 +1,7 @@
 #include "scanloc/report/run_records.hpp"
 
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
@@ -46,10 +47,34 @@ std::optional<double> OptionalNumber(const json& object, const std::string& key,
   return Number(*it, Join(path, key));
 }
 
+constexpr long long kIntMax = std::numeric_limits<int>::max();
+constexpr long long kIntMin = std::numeric_limits<int>::min();
+constexpr long long kWholeMax = std::numeric_limits<long long>::max();
+
+// A JSON integer within [min, max]: a field written from an int or a size_t. A double, or an
+// integer beyond what the field holds, fails (a cast would be undefined or wrap).
+long long Whole(const json& value, const std::string& path, long long min, long long max) {
+  const std::string expected =
+      "a whole number from " + std::to_string(min) + " to " + std::to_string(max);
+  if (!value.is_number_integer()) Fail(path, expected);
+  if (value.is_number_unsigned() &&
+      value.get<unsigned long long>() > static_cast<unsigned long long>(kWholeMax))
+    Fail(path, expected);
+  const long long whole = value.get<long long>();
+  if (whole < min || whole > max) Fail(path, expected);
+  return whole;
+}
+
 int RequiredInteger(const json& object, const std::string& key, const std::string& path) {
   const json& value = Required(object, key, path, "a whole number");
-  if (!value.is_number_integer()) Fail(Join(path, key), "a whole number");
-  return value.get<int>();
+  return static_cast<int>(Whole(value, Join(path, key), 0, kIntMax));
+}
+
+std::optional<long long> OptionalWhole(const json& object, const std::string& key,
+                                       const std::string& path, long long min, long long max) {
+  const auto it = object.find(key);
+  if (it == object.end() || it->is_null()) return std::nullopt;
+  return Whole(*it, Join(path, key), min, max);
 }
 
 bool RequiredBool(const json& object, const std::string& key, const std::string& path) {
@@ -112,11 +137,8 @@ LikelihoodTestResult TestFrom(const json& value, const std::string& path) {
   const std::string histogram_path = Join(path, keys::kHistogram);
   const json& histogram =
       RequiredArray(value, keys::kHistogram, path, "an array of whole numbers (slot counts)");
-  for (const json& count : histogram) {
-    if (!count.is_number_integer() || count.get<long long>() < 0)
-      Fail(histogram_path, "an array of whole numbers (slot counts)");
-    test.histogram.push_back(count.get<int>());
-  }
+  for (const json& count : histogram)
+    test.histogram.push_back(static_cast<int>(Whole(count, histogram_path, 0, kIntMax)));
   return test;
 }
 
@@ -138,7 +160,7 @@ template <class Row>
 void ReadVerdict(const json& value, const std::string& path, Row& row) {
   row.valid = RequiredBool(value, keys::kValid, path);
   row.reason = OptionalString(value, keys::kReason, path);
-  if (const auto rank = OptionalNumber(value, keys::kRank, path))
+  if (const auto rank = OptionalWhole(value, keys::kRank, path, kIntMin, kIntMax))
     row.rank = static_cast<int>(*rank);
 }
 
@@ -160,7 +182,7 @@ RefinementRow RefinementFrom(const json& value, const std::string& path) {
   RefinementRow r;
   r.T_world_laser = RequiredPose(value, keys::kTWorldLaser, path);
   r.converged = OptionalBool(value, keys::kConverged, path);
-  if (const auto iterations = OptionalNumber(value, keys::kIterations, path))
+  if (const auto iterations = OptionalWhole(value, keys::kIterations, path, 0, kIntMax))
     r.iterations = static_cast<int>(*iterations);
   r.before = RequiredTest(value, keys::kLikelihoodTestBefore, path);
   r.after = RequiredTest(value, keys::kLikelihoodTestAfter, path);
@@ -224,7 +246,7 @@ IterationRow RowFrom(const json& record) {
   row.validated = RequiredBool(record, keys::kValidated, "");
   row.reason = OptionalString(record, keys::kReason, "");
   row.inserted = OptionalBool(record, keys::kInserted, "");
-  if (const auto points = OptionalNumber(record, keys::kMapPoints, ""))
+  if (const auto points = OptionalWhole(record, keys::kMapPoints, "", 0, kWholeMax))
     row.map_points = static_cast<std::size_t>(*points);
   if (const auto it = record.find(keys::kTimingsMs); it != record.end() && it->is_object()) {
     row.evaluate_ms = OptionalNumber(*it, keys::kEvaluate, keys::kTimingsMs).value_or(0.0);
