@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +15,7 @@
 
 #include "scanloc/common/parse_error.hpp"
 #include "scanloc/geometry/laser_scan.hpp"
+#include "scanloc/geometry/pose2d.hpp"
 
 namespace scanloc::fuzz {
 
@@ -63,6 +65,11 @@ inline void Require(bool holds, const std::string& what) {
   if (holds) return;
   std::fprintf(stderr, "scanloc fuzz: contract broken: %s\n", what.c_str());
   std::abort();
+}
+
+// Every coordinate of a posture a reader returns is finite.
+inline bool FinitePose(const Pose2D& pose) {
+  return std::isfinite(pose.x_m) && std::isfinite(pose.y_m) && std::isfinite(pose.yaw_rad);
 }
 
 // A scan a reader returns must be one the rest of the library accepts.

@@ -17,9 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (std::size_t i = 0; i < run.iterations.size(); ++i) {
       const scanloc::RecordedIteration& r = run.iterations[i];
       scanloc::fuzz::Require(r.index == i, "records out of order were accepted");
-      const scanloc::Pose2D& p = r.T_world_robot;
-      scanloc::fuzz::Require(std::isfinite(p.x_m) && std::isfinite(p.y_m) &&
-                                 std::isfinite(p.yaw_rad),
+      scanloc::fuzz::Require(scanloc::fuzz::FinitePose(r.T_world_robot),
                              "a record with a non-finite posture was accepted");
       if (r.kept_test)
         for (const int count : r.kept_test->histogram)

@@ -9,26 +9,18 @@
 #include "fuzz_support.hpp"
 #include "scanloc/io/ros_bag_source.hpp"
 
-namespace {
-
-bool Finite(const scanloc::Pose2D& pose) {
-  return std::isfinite(pose.x_m) && std::isfinite(pose.y_m) && std::isfinite(pose.yaw_rad);
-}
-
-}  // namespace
-
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const scanloc::fuzz::InputFile input(".bag");
   const std::string& path = input.Write(data, size);
   scanloc::fuzz::AcceptDocumentedErrors([&] {
     scanloc::RosBagIterationSource source(path, scanloc::RosBagOptions{});
-    scanloc::fuzz::Require(Finite(source.mounting().T_robot_laser),
+    scanloc::fuzz::Require(scanloc::fuzz::FinitePose(source.mounting().T_robot_laser),
                            "RosBagIterationSource returned a non-finite mounting");
     scanloc::Iteration iteration;
     while (source.Next(iteration)) {
       scanloc::fuzz::RequireConsistentScan(iteration.scan);
       if (iteration.odometry)
-        scanloc::fuzz::Require(Finite(*iteration.odometry),
+        scanloc::fuzz::Require(scanloc::fuzz::FinitePose(*iteration.odometry),
                                "RosBagIterationSource returned non-finite odometry");
     }
   });

@@ -8,14 +8,6 @@
 #include "fuzz_support.hpp"
 #include "scanloc/report/run_records.hpp"
 
-namespace {
-
-bool Finite(const scanloc::Pose2D& p) {
-  return std::isfinite(p.x_m) && std::isfinite(p.y_m) && std::isfinite(p.yaw_rad);
-}
-
-}  // namespace
-
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const scanloc::fuzz::InputFile input(".jsonl");
   const std::string& path = input.Write(data, size);
@@ -24,10 +16,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (std::size_t i = 0; i < read.rows.size(); ++i) {
       const scanloc::IterationRow& row = read.rows[i];
       scanloc::fuzz::Require(row.index == i, "rows out of order were accepted");
-      scanloc::fuzz::Require(Finite(row.T_world_robot) && Finite(row.prediction),
-                             "a row with a non-finite posture was accepted");
+      scanloc::fuzz::Require(
+          scanloc::fuzz::FinitePose(row.T_world_robot) && scanloc::fuzz::FinitePose(row.prediction),
+          "a row with a non-finite posture was accepted");
       if (row.closure && row.closure->T_old_robot)
-        scanloc::fuzz::Require(Finite(*row.closure->T_old_robot),
+        scanloc::fuzz::Require(scanloc::fuzz::FinitePose(*row.closure->T_old_robot),
                                "a closure with a non-finite measurement was accepted");
       for (const scanloc::CandidateRow& candidate : row.candidates)
         for (const int count : candidate.test.histogram)

@@ -210,8 +210,7 @@ RefinedCandidateRow RefinedCandidateFrom(const json& value, const std::string& p
 
 std::size_t RequiredCount(const json& object, const std::string& key, const std::string& path) {
   const json& value = Required(object, key, path, "a whole number");
-  if (!value.is_number_unsigned()) Fail(Join(path, key), "a whole number");
-  return value.get<std::size_t>();
+  return static_cast<std::size_t>(Whole(value, Join(path, key), 0, kWholeMax));
 }
 
 // The loop closure tried after the record's scan, if any.
@@ -234,9 +233,7 @@ std::optional<ClosureRow> ClosureFrom(const json& record) {
 IterationRow RowFrom(const json& record) {
   if (!record.is_object()) Fail("the record", "a JSON object");
   IterationRow row;
-  const json& index = Required(record, keys::kIndex, "", "a whole number");
-  if (!index.is_number_unsigned()) Fail(keys::kIndex, "a whole number");
-  row.index = index.get<std::size_t>();
+  row.index = RequiredCount(record, keys::kIndex, "");
   row.timestamp_s = RequiredNumber(record, keys::kTimestampS, "");
   row.origin = OptionalString(record, keys::kOrigin, "");
   row.skipped = RequiredBool(record, keys::kSkipped, "");
