@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "scanloc/io/run_folder.hpp"
+#include "scanloc/report/closure_figure.hpp"
 #include "scanloc/report/figure_style.hpp"
 #include "scanloc/report/run_records.hpp"
 #include "scanloc/report/trajectory_figure.hpp"
@@ -101,6 +102,62 @@ TEST(ClosureReport, TheTrajectoryFigureDrawsAcceptedClosuresWithTheirLegend) {
   EXPECT_EQ(strokes, 2u);
   rows[15].closure.reset();
   EXPECT_FALSE(testing::Contains(TrajectoryFigure(input, "none"), "loop closures"));
+}
+
+// A closure matched against the old nodes at `matched` (the session had the scan at Walked's).
+IterationRecord MatchedClosure(std::size_t index, const Pose2D& matched, bool accepted,
+                               double largest_shift_m) {
+  IterationRecord record = Walked(index);
+  record.closure = Closure(1, accepted);
+  record.closure->T_world_robot_matched = matched;
+  record.closure->test = LikelihoodTestResult{};
+  record.closure->largest_shift_m = largest_shift_m;
+  return record;
+}
+
+TEST(ClosureReport, EachMatchedClosuresShiftAndTurnAreMeasuredFromTheSessionsPosture) {
+  std::vector<IterationRow> rows;
+  // Scan 10 is at (5, 0, 0): matched 3 cm along y and 0.02 rad turned; accepted, the solve moved a
+  // node 1.5 cm. Scan 11 (5.5, 0, 0): matched 0.4 m off, not accepted. Scan 12: nothing refined.
+  rows.push_back(IterationRowFromJson(
+      ToJson(MatchedClosure(10, Pose2D(5.0, 0.03, 0.02), true, 0.015)).dump()));
+  rows.push_back(IterationRowFromJson(
+      ToJson(MatchedClosure(11, Pose2D(5.5, 0.4, -0.1), false, 0.0)).dump()));
+  IterationRecord unmatched = Walked(12);
+  unmatched.closure = Closure(2, false);
+  rows.push_back(IterationRowFromJson(ToJson(unmatched).dump()));
+  const std::vector<ClosureSample> samples = ClosureSamples(rows);
+  ASSERT_EQ(samples.size(), 2u);
+  EXPECT_EQ(samples[0].index, 10u);
+  EXPECT_EQ(samples[0].old_iteration, 1u);
+  EXPECT_TRUE(samples[0].accepted);
+  EXPECT_NEAR(samples[0].shift_m, 0.03, 1e-12);
+  EXPECT_NEAR(samples[0].heading_rad, 0.02, 1e-12);
+  ASSERT_TRUE(samples[0].applied_m.has_value());
+  EXPECT_NEAR(*samples[0].applied_m, 0.015, 1e-12);
+  EXPECT_FALSE(samples[1].accepted);
+  EXPECT_NEAR(samples[1].shift_m, 0.4, 1e-12);
+  EXPECT_NEAR(samples[1].heading_rad, -0.1, 1e-12);
+  EXPECT_FALSE(samples[1].applied_m.has_value());  // only an accepted closure moves the graph
+}
+
+TEST(ClosureReport, TheCorrectionFigureDrawsEveryMatchedClosureOrSaysThereIsNone) {
+  std::vector<IterationRow> rows;
+  for (std::size_t i = 0; i < 20; ++i) {
+    IterationRecord record = Walked(i);
+    if (i == 15) record = MatchedClosure(15, Pose2D(7.5, 0.05, 0.01), true, 0.04);
+    if (i == 17) record = MatchedClosure(17, Pose2D(8.5, 0.9, 0.3), false, 0.0);
+    rows.push_back(IterationRowFromJson(ToJson(record).dump()));
+  }
+  const std::string svg = ClosureCorrectionFigure(rows, "closures");
+  // Each closure has a tooltip naming its scans; the accepted one its node shift.
+  EXPECT_TRUE(testing::Contains(svg, "scan 15 with scan 1, accepted: 5.0 cm, 0.57°; the graph "
+                                     "moved a node 4.0 cm"));
+  EXPECT_TRUE(testing::Contains(svg, "scan 17 with scan 1, not accepted: 90.0 cm, 17.19°"));
+  EXPECT_FALSE(testing::Contains(svg, "no loop closure was matched"));
+  for (IterationRow& row : rows) row.closure.reset();
+  EXPECT_TRUE(testing::Contains(ClosureCorrectionFigure(rows, "none"),
+                                "no loop closure was matched: no correction to draw"));
 }
 
 }  // namespace

@@ -598,6 +598,32 @@ TEST_F(ReportTest, AnOlderRunsSessionExpectValueLimitIsReadAsValidations) {
     EXPECT_FALSE(Contains(note, "configuration")) << note;
 }
 
+// With loop closure on, the page has a section of the closures tried and what each corrected;
+// a run without closures has none.
+TEST_F(ReportTest, ARunWithLoopClosuresHasTheirSectionWithTheirCounts) {
+  std::vector<IterationRecord> records;
+  for (std::size_t i = 0; i < 4; ++i) records.push_back(Localised(i, true));
+  WriteRecords(records);
+  const std::string plain = ReadText(WriteRunReport(dir_).path);
+  EXPECT_FALSE(Contains(plain, "id=\"closures\""));
+  records[2].closure.emplace();
+  records[2].closure->old_iteration = 0;
+  records[2].closure->reason = "no old node in reach";
+  records[3].closure.emplace();
+  records[3].closure->old_iteration = 1;
+  records[3].closure->accepted = true;
+  records[3].closure->reason = "accepted";
+  records[3].closure->T_world_robot_matched = records[3].T_world_robot;
+  records[3].closure->test = LikelihoodTestResult{};
+  records[3].closure->largest_shift_m = 0.02;
+  WriteRecords(records);
+  const std::string html = ReadText(WriteRunReport(dir_).path);
+  EXPECT_TRUE(Contains(html, "<h2 id=\"closures\">Loop closures</h2>"));
+  EXPECT_TRUE(Contains(html, "2 closures tried, 1 matched against the old nodes, 1 accepted."));
+  EXPECT_TRUE(Contains(html, "scan 3 with scan 1, accepted: 0.0 cm, 0.00°; the graph moved a "
+                             "node 2.0 cm"));
+}
+
 TEST_F(ReportTest, MissingSummaryAndMapAreSaidAndTheRestRenders) {
   WriteRecords({Localised(0, true), Localised(1, true)});
   const ReportResult result = WriteRunReport(dir_, Everything());

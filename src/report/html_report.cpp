@@ -7,6 +7,7 @@
 
 #include "scanloc/common/atomic_file.hpp"
 #include "scanloc/maps/point_map_io.hpp"
+#include "scanloc/report/closure_figure.hpp"
 #include "scanloc/report/grid_trajectory_figure.hpp"
 #include "scanloc/report/histogram_figure.hpp"
 #include "scanloc/report/html_tables.hpp"
@@ -294,6 +295,26 @@ void WriteMomentsSection(std::ostream& page, const RunContents& run) {
        << ".</figcaption></figure>\n";
 }
 
+// With loop closure on: every closure matched against the old nodes, and what it corrected.
+void WriteClosureSection(std::ostream& page, const std::vector<IterationRow>& rows) {
+  std::size_t tried = 0, accepted = 0;
+  for (const IterationRow& row : rows)
+    if (row.closure) {
+      ++tried;
+      accepted += row.closure->accepted;
+    }
+  if (tried == 0) return;
+  const std::size_t matched = ClosureSamples(rows).size();
+  page << "<h2 id=\"closures\">Loop closures</h2>\n<figure>"
+       << ClosureCorrectionFigure(rows, "closures")
+       << "<figcaption>" << tried << " closures tried, " << matched
+       << " matched against the old nodes, " << accepted
+       << " accepted. For each matched one: how far the match put the scan from the session's "
+          "posture (top) and how much it turned it (bottom); for the accepted ones, a ring at the "
+          "largest node displacement of the pose graph's solve that followed. Hover a point for "
+          "its scans.</figcaption></figure>\n";
+}
+
 }  // namespace
 
 std::string RenderRunReport(const RunContents& run, const ReportOptions& options,
@@ -315,6 +336,7 @@ std::string RenderRunReport(const RunContents& run, const ReportOptions& options
 
   WriteTrajectorySection(page, run, selection);
   WriteMomentsSection(page, run);
+  WriteClosureSection(page, rows);
   page << "<h2 id=\"iterations\">Iterations drawn</h2>\n<p>Selection: " << Escape(selection.rule)
        << ". Change it with <code>--first N</code>, <code>--every K</code>, <code>--flagged "
           "N</code> and <code>--iterations 3,10-12</code>.</p>\n";

@@ -225,8 +225,11 @@ std::optional<ClosureRow> ClosureFrom(const json& record) {
   closure.node = RequiredCount(*it, keys::kNode, keys::kClosure);
   closure.old_node = RequiredCount(*it, keys::kOldNode, keys::kClosure);
   // Only with the refinement's test: older run folders wrote an identity when nothing was refined.
-  if (it->contains(keys::kExpectValueM))
+  if (it->contains(keys::kExpectValueM)) {
     closure.T_old_robot = OptionalPose(*it, keys::kTOldRobot, keys::kClosure);
+    closure.T_world_robot_matched = OptionalPose(*it, keys::kMatched, keys::kClosure);
+  }
+  closure.largest_shift_m = OptionalNumber(*it, keys::kLargestShiftM, keys::kClosure);
   return closure;
 }
 

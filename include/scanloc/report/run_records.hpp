@@ -55,6 +55,10 @@ struct ClosureRow {
   // The closure's measurement, the scan seen from the old scan: present when a posture was
   // refined against the old part of the map.
   std::optional<Pose2D> T_old_robot;
+  std::optional<Pose2D> T_world_robot_matched;  // the scan's posture matched on the old nodes
+  // The largest node displacement of the graph's solve after this closure (absent in run folders
+  // older than the field).
+  std::optional<double> largest_shift_m;
 };
 
 struct IterationRow {
