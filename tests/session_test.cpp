@@ -189,6 +189,39 @@ TEST(Session, AnUnvalidatedPostureIsTheRefinedBestGuessAndDoesNotExtendTheMap) {
   EXPECT_EQ(session.point_map().live_size(), points);
 }
 
+// Scan 20 of the loop sees a crowd: 85 % of its beams end 0.4 m away, on nothing the map has.
+// Rule 1 fails (too little of the scan on the map); the refinement, anchored by the few beams
+// left, says nothing the odometry could be judged by, so the posture stays the prediction; with
+// low_overlap_takes_prediction off the refinement is kept, as before.
+IterationRecord CrowdedScan(bool low_overlap_takes_prediction) {
+  Sequence sequence = LoopAroundTheRoom(8);
+  std::vector<double>& ranges = sequence.iterations[20].scan.ranges_m;
+  for (std::size_t b = 0; b < ranges.size(); ++b)
+    if (b % 20 >= 3) ranges[b] = 0.4;
+  SessionOptions options;
+  options.initial_pose = sequence.truth.front();
+  options.low_overlap_takes_prediction = low_overlap_takes_prediction;
+  Session session(SessionConfig{options, {}}, {}, Classroom(), PointMap{});
+  for (std::size_t i = 0; i < 20; ++i) session.Process(sequence.iterations[i]);
+  return session.Process(sequence.iterations[20]);
+}
+
+TEST(Session, AScanWithTooLittleOfItOnTheMapKeepsThePrediction) {
+  const IterationRecord kept = CrowdedScan(true);
+  ASSERT_FALSE(kept.skipped);
+  EXPECT_FALSE(kept.validated);
+  EXPECT_EQ(kept.verdict, Verdict::kLowMatchRatio);
+  EXPECT_DOUBLE_EQ(kept.T_world_robot.x_m, kept.prediction.x_m);
+  EXPECT_DOUBLE_EQ(kept.T_world_robot.y_m, kept.prediction.y_m);
+  EXPECT_DOUBLE_EQ(kept.T_world_robot.yaw_rad, kept.prediction.yaw_rad);
+  const IterationRecord refined = CrowdedScan(false);
+  EXPECT_EQ(refined.verdict, Verdict::kLowMatchRatio);
+  ASSERT_NE(refined.Kept(), nullptr);
+  EXPECT_DOUBLE_EQ(refined.T_world_robot.x_m, refined.Kept()->T_world_robot.x_m);
+  const Pose2D moved = Between(refined.prediction, refined.T_world_robot);
+  EXPECT_GT(std::hypot(moved.x_m, moved.y_m) + std::abs(moved.yaw_rad), 1e-4);
+}
+
 TEST(Session, EveryRefinedCandidateIsRecordedAndTheKeptOneIsAmongThem) {
   const Sequence sequence = LoopAroundTheRoom(7);
   SessionOptions options;

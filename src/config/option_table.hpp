@@ -151,6 +151,8 @@ void VisitSession(C& c, V& v) {
     "a scan the rules do not confirm keeps the odometry prediction, not its refinement ...");
   v("session.prediction_disproved_cost_ratio", s.prediction_disproved_cost_ratio, Bounds{1, 100},
     "... unless the prediction's cost (3.11) exceeds this many times the refinement's");
+  v("session.low_overlap_takes_prediction", s.low_overlap_takes_prediction,
+    "a scan whose refinement fails rule 1 (too little of it on the map) keeps the prediction");
   v("session.learned_max_expect_value", s.learned_max_expect_value,
     "rule 2's E_max is the laser signature's bound (validation's is its prior); false: recorded "
     "only");

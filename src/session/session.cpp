@@ -175,8 +175,7 @@ std::vector<Candidate> Session::MakeCandidates(const Pose2D& prediction,
 
 // Localise from the candidates (with the wide search's when lost), rule 2's E_max from the laser
 // signature when so configured. A confirmed refinement is the posture and teaches the signature;
-// an unconfirmed one is flagged and, with unconfirmed_takes_prediction, the posture stays the
-// prediction unless the data disproves it.
+// an unconfirmed one is flagged, and the posture may stay the prediction (TakesPrediction).
 void Session::LocaliseInto(IterationRecord& record, const Iteration& iteration) {
   const LocalisationOptions options = BoundedOptions(record);
   std::vector<Candidate> candidates = MakeCandidates(record.prediction, iteration);
@@ -187,11 +186,7 @@ void Session::LocaliseInto(IterationRecord& record, const Iteration& iteration) 
   const RankedCandidate& kept = *record.Kept();
   record.verdict = kept.verdict;
   record.validated = record.localisation->validated();
-  record.T_world_robot =
-      record.validated || !options_.unconfirmed_takes_prediction ||
-              PredictionDisproved(*record.localisation, options_.prediction_disproved_cost_ratio)
-          ? kept.T_world_robot
-          : record.prediction;
+  record.T_world_robot = TakesPrediction(record, kept) ? record.prediction : kept.T_world_robot;
   if (record.validated) signature_.Add(kept.test);
   AfterLocalised(record, iteration, was_lost);
 }
@@ -218,6 +213,18 @@ void Session::RestoreLocalised(IterationRecord& record, const Iteration& iterati
     signature_.Add(*recorded.kept_test);
   }
   AfterLocalised(record, iteration, was_lost);
+}
+
+// An unconfirmed scan keeps the prediction when its refinement had too little of the scan on the
+// map to say anything (rule 1, or no valid pair), or, with unconfirmed_takes_prediction, unless
+// the data disproves the prediction.
+bool Session::TakesPrediction(const IterationRecord& record, const RankedCandidate& kept) const {
+  if (record.validated) return false;
+  if (options_.low_overlap_takes_prediction &&
+      (kept.verdict == Verdict::kLowMatchRatio || kept.verdict == Verdict::kNoValidPairs))
+    return true;
+  return options_.unconfirmed_takes_prediction &&
+         !PredictionDisproved(*record.localisation, options_.prediction_disproved_cost_ratio);
 }
 
 LocalisationOptions Session::BoundedOptions(IterationRecord& record) const {

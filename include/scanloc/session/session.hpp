@@ -56,10 +56,18 @@ struct SessionOptions {
   // refinement's (in a turn where the odometry heading slipped, the refinement is the better
   // guess).
   double prediction_disproved_cost_ratio = 1.5;
+  // Whatever unconfirmed_takes_prediction says, a scan whose kept refinement fails rule 1 (or has
+  // no valid pair) keeps the prediction: with so little of the scan on the map nothing anchored
+  // the refinement (after a gap in a log it wanders half a metre on a few beams), and the data
+  // cannot disprove the odometry. Measured on all eight public logs under perturbations of the
+  // defaults (docs/BENCHMARKS.md, "Never lost").
+  bool low_overlap_takes_prediction = true;
   // The laser signature learned from the confirmed scans; with learned_max_expect_value, rule 2's
   // E_max is its bound (validation.max_expect_value_m the prior), otherwise it is only recorded.
+  // On by default: the sparse Radish logs' scans lie 0.10–0.16 m (median EV) from a map laid by
+  // their true poses, beyond the prior's 0.1 m, and the session stopped confirming anything.
   LaserSignatureOptions signature;
-  bool learned_max_expect_value = false;
+  bool learned_max_expect_value = true;
   // When the session counts itself lost, and the wide search it then adds.
   RecoveryOptions recovery;
   // Nodes, closures and the pose graph whose corrections move the map.
@@ -116,6 +124,7 @@ class Session : public ScanProcessor {
   void LocaliseInto(IterationRecord& record, const Iteration& iteration);
   void RestoreLocalised(IterationRecord& record, const Iteration& iteration,
                         const RecordedIteration& recorded);
+  bool TakesPrediction(const IterationRecord& record, const RankedCandidate& kept) const;
   // Rule 2's E_max in force for the next localisation and the signature's bound, into `record`.
   LocalisationOptions BoundedOptions(IterationRecord& record) const;
   // The drift after a localised scan, confirmed or not; `was_lost` before it.
