@@ -15,8 +15,9 @@ namespace {
 namespace style = figure_style;
 
 constexpr char kRejectedColour[] = "#9a9a9a";
-constexpr double kWidthPx = 820.0, kPanelHeightPx = 130.0, kGapPx = 32.0;
-constexpr double kLeftPx = 56.0, kRightPx = 14.0, kTopPx = 22.0, kBottomPx = 40.0;
+// Panel titles stand above the panels.
+const TwoPanelLayout kLayout{820.0, 130.0, 32.0, 56.0, 14.0, 22.0, 40.0};
+const double kPanelHeightPx = kLayout.panel_height_px;
 
 // One panel: its title, its value axis and the value each sample draws.
 struct Panel {
@@ -44,7 +45,7 @@ std::string Tooltip(const ClosureSample& s) {
 }
 
 void DrawPanelFrame(SvgCanvas& svg, const Panel& panel, double top) {
-  const double x0 = kLeftPx, x1 = kWidthPx - kRightPx;
+  const double x0 = kLayout.x0(), x1 = kLayout.x1();
   svg.Rect(x0, top, x1 - x0, kPanelHeightPx, "white", style::kFrame, 0.8);
   for (const double t : panel.ticks) {
     svg.Line({x0, panel.y(t)}, {x1, panel.y(t)}, style::kGrid, 0.8);
@@ -83,7 +84,7 @@ std::vector<Panel> Panels(const std::vector<ClosureSample>& samples) {
   const double shift_high = Span(shifts_cm, 1.0), heading_high = Span(headings_deg, 0.5);
   std::vector<Panel> panels;
   for (int p = 0; p < 2; ++p) {
-    const double top = kTopPx + p * (kPanelHeightPx + kGapPx), bottom = top + kPanelHeightPx;
+    const double top = kLayout.PanelTop(p), bottom = top + kPanelHeightPx;
     if (p == 0)
       panels.push_back({"shift [cm]", {0.0, shift_high, bottom, top},
                         NiceTicks(0.0, shift_high, 4), shift_high < 5.0 ? 1 : 0});
@@ -119,30 +120,20 @@ std::string ClosureCorrectionFigure(const std::vector<IterationRow>& rows, const
       {LegendItem::Symbol::kDot, style::kClosure, "accepted: the match against the old nodes"},
       {LegendItem::Symbol::kDot, kRejectedColour, "not accepted"},
       {LegendItem::Symbol::kRing, style::kClosure, "largest node shift of the solve that followed"}};
-  const double plot_x0 = kLeftPx, plot_x1 = kWidthPx - kRightPx;
-  const double legend_px = LegendHeight(legend, plot_x1 - plot_x0);
-  const double height = kTopPx + 2 * kPanelHeightPx + kGapPx + kBottomPx + 8 + legend_px;
-  SvgCanvas svg(kWidthPx, height, id, "loop closures: the correction of each");
-  if (samples.empty()) {
-    svg.Rect(plot_x0, kTopPx, plot_x1 - plot_x0, 2 * kPanelHeightPx + kGapPx, "none", style::kFrame,
-             0.8);
-    svg.Text({0.5 * (plot_x0 + plot_x1), kTopPx + kPanelHeightPx},
-             "no loop closure was matched: no correction to draw", {13.0, "middle", style::kMessage});
-    return svg.Finish();
-  }
+  const double plot_x0 = kLayout.x0(), plot_x1 = kLayout.x1();
+  SvgCanvas svg = TwoPanelCanvas(kLayout, legend, id, "loop closures: the correction of each");
+  if (samples.empty())
+    return FinishEmpty(svg, kLayout, "no loop closure was matched: no correction to draw");
   const double last_index = std::max<double>(1.0, rows.back().index);
   const LinearAxis x{0.0, last_index, plot_x0 + 4, plot_x1 - 4};
   const std::vector<Panel> panels = Panels(samples);
   for (int p = 0; p < 2; ++p) {
-    const double top = kTopPx + p * (kPanelHeightPx + kGapPx);
+    const double top = kLayout.PanelTop(p);
     DrawPanelFrame(svg, panels[p], top);
     DrawSamples(svg, samples, x, panels[p], top, p == 1);
   }
-  const double axis_y = kTopPx + 2 * kPanelHeightPx + kGapPx;
-  for (const double t : NiceTicks(0.0, last_index, 8))
-    svg.Text({x(t), axis_y + 14}, FormatFixed(t, 0), {10.0, "middle", style::kAxis});
-  svg.Text({0.5 * (plot_x0 + plot_x1), axis_y + 28}, "iteration", {10.5, "middle", style::kAxis});
-  DrawLegend(svg, legend, plot_x0, height - legend_px, plot_x1 - plot_x0);
+  DrawIterationAxis(svg, x, last_index, kLayout.AxisY(), plot_x0, plot_x1);
+  DrawLegendBelow(svg, kLayout, legend);
   return svg.Finish();
 }
 

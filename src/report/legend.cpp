@@ -1,5 +1,6 @@
 #include "scanloc/report/legend.hpp"
 
+#include "scanloc/report/figure_style.hpp"
 #include "scanloc/report/markup.hpp"
 
 namespace scanloc {
@@ -76,6 +77,34 @@ void DrawScaleBar(SvgCanvas& svg, const MapFrame& frame, LabelPlacer* labels) {
 
 double LegendHeight(const std::vector<LegendItem>& items, double width_px) {
   return Layout(items, 0.0, 0.0, width_px, [](const LegendItem&, double, double) {});
+}
+
+void DrawIterationAxis(SvgCanvas& svg, const LinearAxis& x, double last_index, double axis_y,
+                       double x0_px, double x1_px) {
+  for (const double t : NiceTicks(0.0, last_index, 8))
+    svg.Text({x(t), axis_y + 14}, FormatFixed(t, 0), {10.0, "middle", figure_style::kAxis});
+  svg.Text({0.5 * (x0_px + x1_px), axis_y + 28}, "iteration",
+           {10.5, "middle", figure_style::kAxis});
+}
+
+SvgCanvas TwoPanelCanvas(const TwoPanelLayout& layout, const std::vector<LegendItem>& legend,
+                         const std::string& id, const std::string& title) {
+  const double legend_px = LegendHeight(legend, layout.x1() - layout.x0());
+  return SvgCanvas(layout.width_px, layout.Height(legend_px), id, title);
+}
+
+void DrawLegendBelow(SvgCanvas& svg, const TwoPanelLayout& layout,
+                     const std::vector<LegendItem>& legend) {
+  const double width = layout.x1() - layout.x0();
+  DrawLegend(svg, legend, layout.x0(), svg.height() - LegendHeight(legend, width), width);
+}
+
+std::string FinishEmpty(SvgCanvas& svg, const TwoPanelLayout& layout, const std::string& message) {
+  const double top = layout.top_px, height = layout.AxisY() - top;
+  svg.Rect(layout.x0(), top, layout.x1() - layout.x0(), height, "none", figure_style::kFrame, 0.8);
+  svg.Text({0.5 * (layout.x0() + layout.x1()), top + 0.5 * height}, message,
+           {13.0, "middle", figure_style::kMessage});
+  return svg.Finish();
 }
 
 }  // namespace scanloc

@@ -15,8 +15,8 @@ constexpr char kSignatureColour[] = "#7b4fb0";
 
 namespace style = figure_style;
 
-constexpr double kWidthPx = 820.0, kPanelHeightPx = 150.0, kGapPx = 26.0;
-constexpr double kLeftPx = 56.0, kRightPx = 14.0, kTopPx = 12.0, kBottomPx = 40.0;
+const TwoPanelLayout kLayout;
+const double kPanelHeightPx = kLayout.panel_height_px;
 // The EV panel spans up to this multiple of E_max, or the 98th percentile of EV when that is
 // lower (larger values are drawn on the top edge).
 constexpr double kEvSpanOfMax = 4.0;
@@ -75,17 +75,10 @@ std::string MomentSeriesFigure(const std::vector<IterationRow>& rows,
 
   const std::vector<std::pair<double, double>> signature_cm = SignatureSeriesCm(rows);
   const std::vector<LegendItem> legend = MomentLegend(!signature_cm.empty());
-  const double plot_x0 = kLeftPx, plot_x1 = kWidthPx - kRightPx;
-  const double legend_px = LegendHeight(legend, kWidthPx - kRightPx - kLeftPx);
-  const double height = kTopPx + 2 * kPanelHeightPx + kGapPx + kBottomPx + 8 + legend_px;
-  SvgCanvas svg(kWidthPx, height, id, "moments over the session");
-  if (samples.empty()) {
-    svg.Rect(plot_x0, kTopPx, plot_x1 - plot_x0, 2 * kPanelHeightPx + kGapPx, "none", style::kFrame,
-             0.8);
-    svg.Text({0.5 * (plot_x0 + plot_x1), kTopPx + kPanelHeightPx},
-             "no iteration was localised: no moments to draw", {13.0, "middle", style::kMessage});
-    return svg.Finish();
-  }
+  const double plot_x0 = kLayout.x0(), plot_x1 = kLayout.x1();
+  SvgCanvas svg = TwoPanelCanvas(kLayout, legend, id, "moments over the session");
+  if (samples.empty())
+    return FinishEmpty(svg, kLayout, "no iteration was localised: no moments to draw");
   const double e_max_cm = 100.0 * validation.max_expect_value_m;
   std::vector<double> evs;
   for (const Sample& s : samples) evs.push_back(s.ev_cm);
@@ -97,7 +90,7 @@ std::string MomentSeriesFigure(const std::vector<IterationRow>& rows,
   const LinearAxis x{0.0, last_index, plot_x0 + 4, plot_x1 - 4};
 
   for (int p = 0; p < 2; ++p) {
-    const double top = kTopPx + p * (kPanelHeightPx + kGapPx);
+    const double top = kLayout.PanelTop(p);
     const double bottom = top + kPanelHeightPx;
     Panel panel = p == 0 ? Panel{"EV [cm]",
                                  "cm",
@@ -135,11 +128,8 @@ std::string MomentSeriesFigure(const std::vector<IterationRow>& rows,
       svg.Polyline(line, kSignatureColour, 1.2);
     }
   }
-  const double axis_y = kTopPx + 2 * kPanelHeightPx + kGapPx;
-  for (const double t : NiceTicks(0.0, last_index, 8))
-    svg.Text({x(t), axis_y + 14}, FormatFixed(t, 0), {10.0, "middle", style::kAxis});
-  svg.Text({0.5 * (plot_x0 + plot_x1), axis_y + 28}, "iteration", {10.5, "middle", style::kAxis});
-  DrawLegend(svg, legend, plot_x0, height - legend_px, plot_x1 - plot_x0);
+  DrawIterationAxis(svg, x, last_index, kLayout.AxisY(), plot_x0, plot_x1);
+  DrawLegendBelow(svg, kLayout, legend);
   return svg.Finish();
 }
 

@@ -30,4 +30,31 @@ double LegendHeight(const std::vector<LegendItem>& items, double width_px);
 // corner; its area is kept free of labels when `labels` is given.
 void DrawScaleBar(SvgCanvas& svg, const MapFrame& frame, LabelPlacer* labels = nullptr);
 
+// The iteration axis under a series plot: about eight round ticks of `x` from 0 to last_index at
+// axis_y, and its title centred between x0_px and x1_px.
+void DrawIterationAxis(SvgCanvas& svg, const LinearAxis& x, double last_index, double axis_y,
+                       double x0_px, double x1_px);
+
+// Two panels stacked over the iterations and the legend below them: the series figures' layout.
+struct TwoPanelLayout {
+  double width_px = 820.0, panel_height_px = 150.0, gap_px = 26.0;
+  double left_px = 56.0, right_px = 14.0, top_px = 12.0, bottom_px = 40.0;
+  double x0() const { return left_px; }
+  double x1() const { return width_px - right_px; }
+  double PanelTop(int panel) const { return top_px + panel * (panel_height_px + gap_px); }
+  double AxisY() const { return PanelTop(2) - gap_px; }  // under the second panel
+  double Height(double legend_px) const { return AxisY() + bottom_px + 8 + legend_px; }
+};
+
+// A canvas of `layout` with room for `legend` below the panels.
+SvgCanvas TwoPanelCanvas(const TwoPanelLayout& layout, const std::vector<LegendItem>& legend,
+                         const std::string& id, const std::string& title);
+// `legend` drawn in the room TwoPanelCanvas left for it.
+void DrawLegendBelow(SvgCanvas& svg, const TwoPanelLayout& layout,
+                     const std::vector<LegendItem>& legend);
+
+// Both panels' frame with `message` in the middle, where there is nothing to draw; returns the
+// finished figure.
+std::string FinishEmpty(SvgCanvas& svg, const TwoPanelLayout& layout, const std::string& message);
+
 }  // namespace scanloc
