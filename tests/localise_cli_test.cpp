@@ -55,7 +55,8 @@ TEST_F(LocaliseCliTest, FromNoPostureTheClassroomIsAmbiguousThenFollowsTheSessio
   ASSERT_TRUE(summary["first_confirmed_scan"].is_number()) << summary.dump(2);
   const std::size_t confirmed = summary["first_confirmed_scan"].get<std::size_t>();
   EXPECT_GE(summary["max_hypotheses"].get<int>(), 2);  // the room turned half a turn
-  EXPECT_GE(summary["ambiguous_scans"].get<int>(), 10);
+  // Both held until the paired costs told them apart (hypothesis_evidence.hpp): 6 scans.
+  EXPECT_GE(summary["ambiguous_scans"].get<int>(), 3);
   // Over time: from the first scan, changes only, the confirmation among them.
   const auto& series = summary["hypotheses_over_time"];
   ASSERT_GE(series.size(), 2u) << summary.dump(2);

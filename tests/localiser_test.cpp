@@ -111,6 +111,61 @@ TEST(Localiser, TwoAlikeRoomsStayAmbiguousUntilTheBoxTellsThemApartThenTheRightO
   EXPECT_LT(ErrorM(localiser.hypotheses().front().T_world_robot, drive.truth.back()), 0.05);
 }
 
+struct LookAlikeRun {
+  int scans_with_both = 0;  // scans holding both the right room's posture and its look-alike's
+  int first_confirmed = -1;
+  Pose2D last;
+};
+
+// The two rooms without the box; the eastern one has a 0.4 m pillar in its west half, which the
+// robot (in the western room's) never sees: its scans fit the eastern room almost as well and
+// both pass rules 1–3 at every scan, but the pillar's pairs charge the eastern one every time.
+LookAlikeRun RunBesideALookAlike(const LocaliserConfig& config, const Drive& drive) {
+  LineMap world;
+  for (const double x : {0.0, 20.0}) {
+    AddBox(world, x, 0.0, x + 8.0, 5.0);
+    world.segments.push_back({{x + 4.0, 0.0}, {x + 4.0, 3.5}});
+  }
+  AddBox(world, 22.8, 3.0, 23.2, 3.4);
+  Localiser localiser(config, {}, world, PointMap{});
+  LookAlikeRun run;
+  for (std::size_t i = 0; i < drive.iterations.size(); ++i) {
+    const IterationRecord r = localiser.Process(drive.iterations[i]);
+    const Pose2D truth = drive.truth[i];
+    const Pose2D east{truth.x_m + 20.0, truth.y_m, truth.yaw_rad};
+    bool west_held = false, east_held = false;
+    for (const Hypothesis& h : r.hypotheses) {
+      west_held = west_held || ErrorM(h.T_world_robot, truth) < 0.1;
+      east_held = east_held || ErrorM(h.T_world_robot, east) < 0.1;
+    }
+    if (west_held && east_held) ++run.scans_with_both;
+    if (r.state == "confirmed" && run.first_confirmed < 0)
+      run.first_confirmed = static_cast<int>(i);
+    run.last = r.T_world_robot;
+  }
+  return run;
+}
+
+TEST(Localiser, ALookAlikeThatCostsMoreAtEveryScanIsDiscardedAndTheRightRoomConfirmed) {
+  LineMap western;  // the drive is simulated in the western room alone (what the robot sees)
+  AddBox(western, 0.0, 0.0, 8.0, 5.0);
+  western.segments.push_back({{4.0, 0.0}, {4.0, 3.5}});
+  const Drive drive = DriveThrough(western, {1.0, 1.5, M_PI / 2.0}, 40, 20.0);
+  const LookAlikeRun run = RunBesideALookAlike(DefaultConfig(), drive);
+  // Both found by the first search; the paired costs tell them apart within a few scans.
+  EXPECT_GE(run.scans_with_both, 1);
+  EXPECT_LE(run.scans_with_both, 12);
+  ASSERT_GE(run.first_confirmed, 0) << "never confirmed";
+  EXPECT_LE(run.first_confirmed, 25);
+  EXPECT_LT(ErrorM(run.last, drive.truth.back()), 0.05);
+  // Without the paired costs (no excess is ever enough), both pass the rules to the end.
+  LocaliserConfig rules_alone = DefaultConfig();
+  rules_alone.localiser.min_cost_excess_ratio = 1e3;
+  const LookAlikeRun control = RunBesideALookAlike(rules_alone, drive);
+  EXPECT_GE(control.scans_with_both, 35);
+  EXPECT_LT(control.first_confirmed, 0);
+}
+
 TEST(Localiser, FindsItselfOnTheClassroomFromNoInitialPostureWithinFiveCentimetres) {
   LineMap world = testing::Classroom();
   world.segments.push_back({{2.4, 0.6}, {3.6, 0.6}});

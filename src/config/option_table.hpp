@@ -289,6 +289,9 @@ void VisitLocalise(C& c, V& v) {
     "a hypothesis not yet confirmed is dropped after this many unconfirmed scans in a row");
   v("localise.lost_after_unconfirmed", l.lost_after_unconfirmed, Bounds{1, 1e6},
     "a confirmed posture is lost (the global search starts again) after this many");
+  v("localise.min_cost_excess_ratio", l.min_cost_excess_ratio, Bounds{0, 1e3},
+    "a hypothesis costlier than another at the same scans beyond chance is dropped when the "
+    "excess is at least this fraction of the cheaper's cost");
   v("localise.max_hypotheses", l.max_hypotheses, Bounds{1, 1000}, "hypotheses held at most");
   v("localise.same_posture_m", l.same_posture_m, Bounds{0, 1e3},
     "hypotheses closer than this and same_posture_rad are one, m");

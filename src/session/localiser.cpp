@@ -1,5 +1,7 @@
 #include "scanloc/session/localiser.hpp"
 
+#include "scanloc/session/hypothesis_evidence.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -73,6 +75,8 @@ void LocaliserOptions::Validate() const {
   require(drop_after_unconfirmed >= 1, "drop_after_unconfirmed must be >= 1");
   require(lost_after_unconfirmed >= 1, "lost_after_unconfirmed must be >= 1");
   require(max_hypotheses >= 1, "max_hypotheses must be >= 1");
+  require(std::isfinite(min_cost_excess_ratio) && min_cost_excess_ratio >= 0.0,
+          "min_cost_excess_ratio must be >= 0");
   require(std::isfinite(same_posture_m) && same_posture_m >= 0.0, "same_posture_m must be >= 0");
   require(std::isfinite(same_posture_rad) && same_posture_rad >= 0.0,
           "same_posture_rad must be >= 0");
@@ -90,7 +94,8 @@ Localiser::Localiser(const LocaliserConfig& config, LaserMounting mounting, Line
   if (View().empty())
     throw std::invalid_argument("localise: the map is empty, there is nothing to localise on");
   if (config_.initial_pose) {
-    hypotheses_.push_back({*config_.initial_pose});
+    hypotheses_.emplace_back();
+    hypotheses_.back().T_world_robot = *config_.initial_pose;
     hypotheses_.back().searches = 1;  // the user's word stands for a search
   }
 }
@@ -98,7 +103,7 @@ Localiser::Localiser(const LocaliserConfig& config, LaserMounting mounting, Line
 IterationRecord Localiser::Process(const Iteration& iteration) {
   const auto start = std::chrono::steady_clock::now();
   IterationRecord record = BeginRecord(iteration, count_);
-  record.max_expect_value_m = config_.localisation.validation.max_expect_value_m;
+  in_force_ = BoundedOptions(record);
   if (iteration.odometry && last_odometry_) {
     const Pose2D increment = Between(*last_odometry_, *iteration.odometry);
     for (Hypothesis& h : hypotheses_) h.T_world_robot = h.T_world_robot * increment;
@@ -152,10 +157,17 @@ void Localiser::Search(IterationRecord& record, const Iteration& iteration) {
     return;
   }
   LocalisationResult result =
-      Localise(View(), scan, candidates, mounting_, config_.localisation, RefinePolicy::kAll);
+      Localise(View(), scan, candidates, mounting_, in_force_, RefinePolicy::kAll);
   for (const RankedCandidate& refined : result.refined)
-    if (refined.verdict == Verdict::kValid)
-      hypotheses_.push_back({refined.T_world_robot, 1, 0, 1, refined.cost, true});
+    if (refined.verdict == Verdict::kValid) {
+      Hypothesis found;
+      found.T_world_robot = refined.T_world_robot;
+      found.confirmed_in_row = found.confirmations = 1;
+      found.cost = refined.cost;
+      found.validated = true;
+      hypotheses_.push_back(found);
+      RecordCost(hypotheses_.back(), count_, refined.cost);
+    }
   if (record.localisation) return;
   record.localisation = std::move(result);
   const RankedCandidate* kept = record.Kept();
@@ -172,11 +184,12 @@ void Localiser::Track(IterationRecord& record, const Iteration& iteration) {
   for (Hypothesis& h : hypotheses_) {
     const auto candidates =
         PredictionCandidates(h.T_world_robot, {}, turning, mounting_, config_.session);
-    results.push_back(Localise(View(), iteration.scan, candidates, mounting_, config_.localisation,
+    results.push_back(Localise(View(), iteration.scan, candidates, mounting_, in_force_,
                                RefinePolicy::kBestValid, config_.session.max_refined_candidates));
     if (const RankedCandidate* kept = results.back().Kept()) {
       h.T_world_robot = kept->T_world_robot;
       h.cost = kept->cost;
+      RecordCost(h, count_, kept->cost);
     }
     h.validated = results.back().validated();
   }
@@ -212,18 +225,19 @@ void Localiser::Prune() {
     hypotheses_.front().unconfirmed_in_row = 0;
     hypotheses_.front().confirmed_in_row = 0;
   }
-  // A held posture goes only once another has been validated confirm_after scans in a row: a
-  // stretch the map explains badly is not taken for a robot carried elsewhere.
+  // Any hypothesis goes once another cost less at the same scans beyond chance (OutCosted). A
+  // held posture that is no longer refined goes once another has been validated confirm_after
+  // scans in a row: a stretch the map explains badly is not taken for a robot carried elsewhere.
   const bool competitor = std::any_of(hypotheses_.begin(), hypotheses_.end(), [&](const auto& h) {
     return !h.held && h.confirmed_in_row >= o.confirm_after;
   });
   const int patience = confirmed_ ? o.lost_after_unconfirmed : o.drop_after_unconfirmed;
-  hypotheses_.erase(std::remove_if(hypotheses_.begin(), hypotheses_.end(),
-                                   [&](const Hypothesis& h) {
-                                     return h.unconfirmed_in_row >= patience &&
-                                            (!h.held || competitor);
-                                   }),
-                    hypotheses_.end());
+  std::vector<Hypothesis> staying;
+  for (const Hypothesis& h : hypotheses_)
+    if (!(h.unconfirmed_in_row >= patience && (!h.held || (competitor && !Costed(h)))) &&
+        !OutCosted(h))
+      staying.push_back(h);
+  hypotheses_ = std::move(staying);
   std::stable_sort(hypotheses_.begin(), hypotheses_.end(), Better);
   std::vector<Hypothesis> kept;
   for (const Hypothesis& h : hypotheses_) {
@@ -235,6 +249,33 @@ void Localiser::Prune() {
     if (!seen && static_cast<int>(kept.size()) < o.max_hypotheses) kept.push_back(h);
   }
   hypotheses_ = std::move(kept);
+}
+
+// Whether `h` was refined at one of the last confirm_after scans (so it can be out-costed).
+bool Localiser::Costed(const Hypothesis& h) const {
+  const auto recent = static_cast<std::size_t>(config_.localiser.confirm_after);
+  return !h.costs.empty() && h.costs.back().scan + recent >= count_;
+}
+
+// Rule 2's E_max for this scan: the laser signature learned from the confirmed posture's
+// validated scans (as a session learns it), or the configured one; both go into `record`.
+LocalisationOptions Localiser::BoundedOptions(IterationRecord& record) const {
+  LocalisationOptions options = config_.localisation;
+  record.signature_expect_value_m =
+      signature_.ExpectValueBound(config_.localisation.validation.max_expect_value_m);
+  if (config_.session.learned_max_expect_value)
+    options.validation.max_expect_value_m = record.signature_expect_value_m;
+  record.max_expect_value_m = options.validation.max_expect_value_m;
+  return options;
+}
+
+// Whether another held hypothesis cost less than `h` at the scans both were localised at, beyond
+// chance (hypothesis_evidence.hpp).
+bool Localiser::OutCosted(const Hypothesis& h) const {
+  const LocaliserOptions& o = config_.localiser;
+  return std::any_of(hypotheses_.begin(), hypotheses_.end(), [&](const Hypothesis& other) {
+    return &other != &h && CompareCosts(h, other, o.confirm_after, o.min_cost_excess_ratio).decided;
+  });
 }
 
 // The state after this scan, the posture (the best hypothesis), confirmation, loss and recovery.
@@ -257,6 +298,8 @@ void Localiser::Conclude(IterationRecord& record) {
   record.state = confirmed_ ? "confirmed" : hypotheses_.size() > 1 ? "ambiguous" : "tentative";
   record.T_world_robot = best.T_world_robot;
   record.validated = confirmed_ && best.validated && !record.skipped;
+  if (record.validated)
+    if (const RankedCandidate* kept = record.Kept()) signature_.Add(kept->test);
   record.lost = lost_;
 }
 

@@ -15,8 +15,15 @@
 
 namespace scanloc {
 
+// The cost (3.11) of a hypothesis at one scan that localised it.
+struct CostAt {
+  std::size_t scan = 0;
+  double cost = 0.0;
+};
+
 // A posture held while the scans have not yet told it from others (§3.3, last paragraph): carried
 // with the odometry, confirmed or discarded by the next scans' Likelihood Tests.
+
 struct Hypothesis {
   Pose2D T_world_robot;
   int confirmed_in_row = 0;    // scans in a row whose rules validated it, up to now
@@ -28,6 +35,7 @@ struct Hypothesis {
   // A posture confirmed before and since lost: held until another has been validated
   // confirm_after scans in a row.
   bool held = false;
+  std::vector<CostAt> costs;  // its newest costs, oldest first (hypothesis_evidence.hpp)
 };
 
 // Everything the operator may want to know about one iteration.

@@ -1,0 +1,64 @@
+#include "scanloc/session/hypothesis_evidence.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+namespace scanloc {
+
+void RecordCost(Hypothesis& h, std::size_t scan, double cost) {
+  if (!std::isfinite(cost)) return;
+  if (!h.costs.empty() && h.costs.back().scan == scan) {
+    h.costs.back().cost = cost;  // localised twice at one scan (tracked, then found by a search)
+    return;
+  }
+  h.costs.push_back({scan, cost});
+  if (h.costs.size() > kMaxCostHistory) h.costs.erase(h.costs.begin());
+}
+
+double StudentT999(int dof) {
+  // Student's t, one-sided 0.999 quantiles for 1..30 degrees of freedom, then the normal's.
+  static constexpr double kTable[] = {318.31, 22.327, 10.215, 7.173, 5.893, 5.208, 4.785, 4.501,
+                                      4.297,  4.144,  4.025,  3.930, 3.852, 3.787, 3.733, 3.686,
+                                      3.646,  3.610,  3.579,  3.552, 3.527, 3.505, 3.485, 3.467,
+                                      3.450,  3.435,  3.421,  3.408, 3.396, 3.385};
+  if (dof < 1) return HUGE_VAL;
+  if (dof <= static_cast<int>(std::size(kTable))) return kTable[dof - 1];
+  return 3.090;
+}
+
+CostComparison CompareCosts(const Hypothesis& costlier, const Hypothesis& cheaper, int min_scans,
+                            double min_excess_ratio) {
+  std::vector<double> excess;
+  double cheaper_sum = 0.0;
+  auto a = costlier.costs.begin();
+  auto b = cheaper.costs.begin();
+  while (a != costlier.costs.end() && b != cheaper.costs.end()) {
+    if (a->scan < b->scan) {
+      ++a;
+    } else if (b->scan < a->scan) {
+      ++b;
+    } else {
+      cheaper_sum += b->cost;
+      excess.push_back((a++)->cost - (b++)->cost);
+    }
+  }
+  CostComparison out;
+  out.scans = static_cast<int>(excess.size());
+  if (out.scans < 2) return out;
+  const double n = static_cast<double>(out.scans);
+  double sum = 0.0;
+  for (double d : excess) sum += d;
+  out.mean_excess = sum / n;
+  out.cheaper_mean = cheaper_sum / n;
+  double squares = 0.0;
+  for (double d : excess) squares += (d - out.mean_excess) * (d - out.mean_excess);
+  const double spread = std::sqrt(squares / (n - 1.0));
+  out.t = spread > 0.0 ? out.mean_excess * std::sqrt(n) / spread
+                       : (out.mean_excess > 0.0 ? HUGE_VAL : 0.0);
+  out.decided = out.scans >= std::max(2, min_scans) && out.t > StudentT999(out.scans - 1) &&
+                out.mean_excess >= min_excess_ratio * out.cheaper_mean;
+  return out;
+}
+
+}  // namespace scanloc

@@ -1,0 +1,83 @@
+#include "scanloc/session/hypothesis_evidence.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace scanloc {
+namespace {
+
+Hypothesis WithCosts(std::size_t first_scan, const std::vector<double>& costs) {
+  Hypothesis h;
+  for (std::size_t i = 0; i < costs.size(); ++i) RecordCost(h, first_scan + i, costs[i]);
+  return h;
+}
+
+TEST(HypothesisEvidence, ACostHigherAtEveryScanByASteadyMarginIsDecidedAfterThreeScans) {
+  const Hypothesis cheaper = WithCosts(10, {0.100, 0.110, 0.095, 0.105});
+  const Hypothesis costlier = WithCosts(10, {0.120, 0.131, 0.114, 0.126});
+  const CostComparison c = CompareCosts(costlier, cheaper, 3, 0.05);
+  EXPECT_EQ(c.scans, 4);
+  EXPECT_NEAR(c.mean_excess, 0.02025, 1e-9);
+  EXPECT_GT(c.t, StudentT999(3));
+  EXPECT_TRUE(c.decided);
+  EXPECT_FALSE(CompareCosts(cheaper, costlier, 3, 0.05).decided) << "the test is one-sided";
+}
+
+TEST(HypothesisEvidence, DifferencesThatChangeSignAreNotDecided) {
+  const Hypothesis a = WithCosts(0, {0.10, 0.13, 0.09, 0.12, 0.10, 0.14, 0.09, 0.12});
+  const Hypothesis b = WithCosts(0, {0.12, 0.10, 0.12, 0.10, 0.13, 0.10, 0.12, 0.10});
+  EXPECT_FALSE(CompareCosts(a, b, 3, 0.0).decided);
+  EXPECT_FALSE(CompareCosts(b, a, 3, 0.0).decided);
+}
+
+TEST(HypothesisEvidence, FewerCommonScansThanAskedAreNeverDecided) {
+  const Hypothesis cheaper = WithCosts(0, {0.10, 0.10});
+  const Hypothesis costlier = WithCosts(0, {0.20, 0.20});
+  EXPECT_FALSE(CompareCosts(costlier, cheaper, 3, 0.05).decided);
+  EXPECT_TRUE(CompareCosts(costlier, cheaper, 2, 0.05).decided) << "a constant excess has no spread";
+}
+
+TEST(HypothesisEvidence, OnlyTheScansBothWereLocalisedAtArePaired) {
+  // `late` was found at scan 5; the older one's far lower costs before that do not count.
+  const Hypothesis old = WithCosts(0, {0.01, 0.01, 0.01, 0.01, 0.01, 0.20, 0.21, 0.19, 0.20});
+  const Hypothesis late = WithCosts(5, {0.10, 0.11, 0.09, 0.10});
+  const CostComparison c = CompareCosts(old, late, 3, 0.05);
+  EXPECT_EQ(c.scans, 4);
+  EXPECT_NEAR(c.mean_excess, 0.10, 1e-9);
+  EXPECT_TRUE(c.decided);
+}
+
+TEST(HypothesisEvidence, ASteadyExcessOfAFewPercentIsNotDecided) {
+  // A refinement settled a little off its place's best fit: 3 % costlier at every scan.
+  const Hypothesis cheaper = WithCosts(0, {0.100, 0.110, 0.095, 0.105, 0.100, 0.102});
+  const Hypothesis costlier = WithCosts(0, {0.1031, 0.1132, 0.0980, 0.1081, 0.1030, 0.1051});
+  const CostComparison c = CompareCosts(costlier, cheaper, 3, 0.05);
+  EXPECT_GT(c.t, StudentT999(c.scans - 1)) << "beyond chance";
+  EXPECT_FALSE(c.decided) << "but by 3 %, under the 5 % asked";
+  EXPECT_TRUE(CompareCosts(costlier, cheaper, 3, 0.02).decided);
+}
+
+TEST(HypothesisEvidence, TheHistoryKeepsTheNewestCostsAndSkipsScansWithoutOne) {
+  Hypothesis h;
+  for (std::size_t scan = 0; scan < 3 * kMaxCostHistory; ++scan)
+    RecordCost(h, scan, static_cast<double>(scan));
+  RecordCost(h, 3 * kMaxCostHistory, std::nan(""));
+  ASSERT_EQ(h.costs.size(), kMaxCostHistory);
+  EXPECT_EQ(h.costs.front().scan, 2 * kMaxCostHistory);
+  EXPECT_EQ(h.costs.back().scan, 3 * kMaxCostHistory - 1);
+  RecordCost(h, 3 * kMaxCostHistory - 1, 0.5);  // the same scan again: replaced, not added
+  EXPECT_EQ(h.costs.size(), kMaxCostHistory);
+  EXPECT_DOUBLE_EQ(h.costs.back().cost, 0.5);
+}
+
+TEST(HypothesisEvidence, StudentQuantilesFallTowardTheNormalOne) {
+  EXPECT_NEAR(StudentT999(1), 318.31, 0.01);
+  EXPECT_NEAR(StudentT999(4), 7.173, 1e-3);
+  EXPECT_NEAR(StudentT999(30), 3.385, 1e-3);
+  EXPECT_NEAR(StudentT999(1000), 3.090, 1e-3);
+  EXPECT_TRUE(std::isinf(StudentT999(0)));
+}
+
+}  // namespace
+}  // namespace scanloc
