@@ -70,6 +70,12 @@ TEST_F(LocaliseCliTest, FromNoPostureTheClassroomIsAmbiguousThenFollowsTheSessio
                                                   series[i]["scan"].get<std::size_t>() == confirmed);
   }
   EXPECT_TRUE(confirmation_listed) << series.dump();
+  // Where the look-alike went, the series says why: out-costed at the same scans.
+  bool reason_given = false;
+  for (const auto& point : series)
+    for (const auto& why : point.value("discarded", nlohmann::json::array()))
+      reason_given = reason_given || why.get<std::string>().find("% more than") != std::string::npos;
+  EXPECT_TRUE(reason_given) << series.dump();
   const auto reference = ReadTum(dir_ + "/session/trajectory.tum");
   const auto found = ReadTum(dir_ + "/localise/trajectory.tum");
   ASSERT_EQ(found.size(), reference.size());
@@ -84,6 +90,7 @@ TEST_F(LocaliseCliTest, FromNoPostureTheClassroomIsAmbiguousThenFollowsTheSessio
   EXPECT_TRUE(testing::Contains(page, "scan 0: ambiguous (2) → scan " + std::to_string(confirmed) +
                                           ": confirmed (1)"))
       << "the summary table's hypotheses over time";
+  EXPECT_TRUE(testing::Contains(page, "[discarded ("));
   EXPECT_TRUE(testing::Contains(page, "first confirmed scan</th><td>" + std::to_string(confirmed)));
 }
 

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <functional>
 #include <random>
 
@@ -115,6 +116,7 @@ struct LookAlikeRun {
   int scans_with_both = 0;  // scans holding both the right room's posture and its look-alike's
   int first_confirmed = -1;
   Pose2D last;
+  std::vector<std::string> discarded;  // every record's reasons, in order
 };
 
 // The two rooms without the box; the eastern one has a 0.4 m pillar in its west half, which the
@@ -139,6 +141,7 @@ LookAlikeRun RunBesideALookAlike(const LocaliserConfig& config, const Drive& dri
       east_held = east_held || ErrorM(h.T_world_robot, east) < 0.1;
     }
     if (west_held && east_held) ++run.scans_with_both;
+    run.discarded.insert(run.discarded.end(), r.discarded.begin(), r.discarded.end());
     if (r.state == "confirmed" && run.first_confirmed < 0)
       run.first_confirmed = static_cast<int>(i);
     run.last = r.T_world_robot;
@@ -158,6 +161,11 @@ TEST(Localiser, ALookAlikeThatCostsMoreAtEveryScanIsDiscardedAndTheRightRoomConf
   ASSERT_GE(run.first_confirmed, 0) << "never confirmed";
   EXPECT_LE(run.first_confirmed, 25);
   EXPECT_LT(ErrorM(run.last, drive.truth.back()), 0.05);
+  // The record says which posture went and why: "(21.00, …): cost 20 % more than (1.00, …) …".
+  const auto out_costed = std::find_if(run.discarded.begin(), run.discarded.end(), [](auto& why) {
+    return why.rfind("(21.", 0) == 0 && why.find("% more than (1.") != std::string::npos;
+  });
+  EXPECT_NE(out_costed, run.discarded.end()) << ::testing::PrintToString(run.discarded);
   // Without the paired costs (no excess is ever enough), both pass the rules to the end.
   LocaliserConfig rules_alone = DefaultConfig();
   rules_alone.localiser.min_cost_excess_ratio = 1e3;

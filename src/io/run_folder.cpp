@@ -133,6 +133,7 @@ nlohmann::json ToJson(const IterationRecord& r) {
     out[keys::kState] = r.state;
     out[keys::kPosed] = r.posed;
     out[keys::kHypotheses] = HypothesesJson(r.hypotheses);
+    if (!r.discarded.empty()) out[keys::kDiscarded] = r.discarded;
   }
   if (r.closure) out[keys::kClosure] = ClosureJson(*r.closure);
   if (r.search_window && r.search) {

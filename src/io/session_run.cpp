@@ -53,11 +53,13 @@ void AddLocalisationSummary(const SessionCounts& c, nlohmann::json& summary) {
   summary["max_hypotheses"] = c.max_hypotheses;
   summary["scans_without_posture"] = c.unposed;
   nlohmann::json series = nlohmann::json::array();
-  for (const SessionCounts::HypothesesPoint& p : c.hypotheses_over_time)
+  for (const SessionCounts::HypothesesPoint& p : c.hypotheses_over_time) {
     series.push_back({{"scan", p.scan},
                       {"timestamp_s", p.timestamp_s},
                       {"state", p.state},
                       {"hypotheses", p.hypotheses}});
+    if (!p.discarded.empty()) series.back()["discarded"] = p.discarded;
+  }
   summary["hypotheses_over_time"] = series;
   if (!c.first_confirmed) summary["problem"] = "no posture was ever confirmed on the map";
 }
@@ -95,8 +97,8 @@ void SessionCounts::Add(const IterationRecord& record) {
   if (!record.state.empty() &&
       (hypotheses_over_time.empty() || hypotheses_over_time.back().state != record.state ||
        hypotheses_over_time.back().hypotheses != record.hypotheses.size()))
-    hypotheses_over_time.push_back(
-        {iterations - 1, record.timestamp_s, record.state, record.hypotheses.size()});
+    hypotheses_over_time.push_back({iterations - 1, record.timestamp_s, record.state,
+                                    record.hypotheses.size(), record.discarded});
   max_hypotheses = std::max(max_hypotheses, record.hypotheses.size());
   unposed += !record.posed;
   if (record.closure) {

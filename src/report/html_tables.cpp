@@ -45,7 +45,8 @@ std::string SummaryValue(const json& value) {
   return value.dump();
 }
 
-// "scan 0: ambiguous (2) → scan 62: confirmed (1)", the first 20 changes.
+// "scan 0: ambiguous (2) → scan 6: confirmed (1) [discarded (x, y, θ): why]", the first 20
+// changes.
 std::string HypothesesOverTime(const json& series) {
   if (!series.is_array()) return SummaryValue(series);
   std::string text;
@@ -54,6 +55,10 @@ std::string HypothesesOverTime(const json& series) {
     text += (i > 0 ? " → " : "") + std::string("scan ") + SummaryValue(p.value("scan", json())) +
             ": " + SummaryValue(p.value("state", json())) + " (" +
             SummaryValue(p.value("hypotheses", json())) + ")";
+    const json discarded = p.value("discarded", json::array());
+    for (std::size_t k = 0; discarded.is_array() && k < discarded.size(); ++k)
+      text += (k == 0 ? " [discarded " : "; ") + SummaryValue(discarded[k]) +
+              (k + 1 == discarded.size() ? "]" : "");
   }
   if (series.size() > 20) text += " … (" + std::to_string(series.size()) + " changes in all)";
   return text;

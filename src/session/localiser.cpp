@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -42,6 +43,13 @@ bool MovedSince(const std::optional<Pose2D>& from, const Iteration& iteration,
   const Pose2D d = Between(*from, *iteration.odometry);
   return std::hypot(d.x_m, d.y_m) > options.localise_translation_m ||
          std::abs(d.yaw_rad) > options.localise_rotation_rad;
+}
+
+// "(x, y, θ)" of a posture, for the reasons a hypothesis was discarded.
+std::string Describe(const Pose2D& p) {
+  char text[80];
+  std::snprintf(text, sizeof text, "(%.2f, %.2f, %.3f)", p.x_m, p.y_m, p.yaw_rad);
+  return text;
 }
 
 }  // namespace
@@ -118,7 +126,7 @@ IterationRecord Localiser::Process(const Iteration& iteration) {
   }
   if (search) Search(record, iteration);
   if (!record.skipped && iteration.odometry) last_localised_odometry_ = iteration.odometry;
-  Prune();
+  Prune(record);
   Conclude(record);
   if (iteration.odometry) last_odometry_ = iteration.odometry;
   ++count_;
@@ -213,9 +221,10 @@ void Localiser::Track(IterationRecord& record, const Iteration& iteration) {
     record.verdict = Verdict::kHighCost;  // valid alone, but far costlier than another held
 }
 
-// Discards the hypotheses the rules stopped validating, merges the ones that met, keeps the best.
-// A confirmed posture the rules stopped validating is lost: held on, unconfirmed, with a search.
-void Localiser::Prune() {
+// Discards the hypotheses the rules stopped validating or another out-costed (the reasons go into
+// `record`), merges the ones that met, keeps the best. A confirmed posture the rules stopped
+// validating is lost: held on, unconfirmed, with a search.
+void Localiser::Prune(IterationRecord& record) {
   const LocaliserOptions& o = config_.localiser;
   if (confirmed_ && !hypotheses_.empty() &&
       hypotheses_.front().unconfirmed_in_row >= o.lost_after_unconfirmed) {
@@ -233,10 +242,16 @@ void Localiser::Prune() {
   });
   const int patience = confirmed_ ? o.lost_after_unconfirmed : o.drop_after_unconfirmed;
   std::vector<Hypothesis> staying;
-  for (const Hypothesis& h : hypotheses_)
-    if (!(h.unconfirmed_in_row >= patience && (!h.held || (competitor && !Costed(h)))) &&
-        !OutCosted(h))
+  for (const Hypothesis& h : hypotheses_) {
+    std::string why = OutCosted(h);
+    if (why.empty() && h.unconfirmed_in_row >= patience && (!h.held || (competitor && !Costed(h))))
+      why = "not validated " + std::to_string(h.unconfirmed_in_row) + " scans in a row" +
+            (h.held ? ", and another validated " + std::to_string(o.confirm_after) : "");
+    if (why.empty())
       staying.push_back(h);
+    else
+      record.discarded.push_back(Describe(h.T_world_robot) + ": " + why);
+  }
   hypotheses_ = std::move(staying);
   std::stable_sort(hypotheses_.begin(), hypotheses_.end(), Better);
   std::vector<Hypothesis> kept;
@@ -269,13 +284,21 @@ LocalisationOptions Localiser::BoundedOptions(IterationRecord& record) const {
   return options;
 }
 
-// Whether another held hypothesis cost less than `h` at the scans both were localised at, beyond
-// chance (hypothesis_evidence.hpp).
-bool Localiser::OutCosted(const Hypothesis& h) const {
+// Why `h` goes: another held hypothesis cost less at the scans both were localised at, beyond
+// chance (hypothesis_evidence.hpp); "" when none did.
+std::string Localiser::OutCosted(const Hypothesis& h) const {
   const LocaliserOptions& o = config_.localiser;
-  return std::any_of(hypotheses_.begin(), hypotheses_.end(), [&](const Hypothesis& other) {
-    return &other != &h && CompareCosts(h, other, o.confirm_after, o.min_cost_excess_ratio).decided;
-  });
+  for (const Hypothesis& other : hypotheses_) {
+    if (&other == &h) continue;
+    const CostComparison c = CompareCosts(h, other, o.confirm_after, o.min_cost_excess_ratio);
+    if (!c.decided) continue;
+    char text[160];
+    std::snprintf(text, sizeof text, "cost %.0f %% more than %s at the last %d scans (paired t %.1f)",
+                  100.0 * c.mean_excess / c.cheaper_mean, Describe(other.T_world_robot).c_str(),
+                  c.scans, c.t);
+    return text;
+  }
+  return "";
 }
 
 // The state after this scan, the posture (the best hypothesis), confirmation, loss and recovery.

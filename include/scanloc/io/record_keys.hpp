@@ -32,6 +32,7 @@ inline constexpr const char* kHeadings = "headings";
 inline constexpr const char* kFlagged = "flagged";
 inline constexpr const char* kHistogram = "histogram";
 inline constexpr const char* kHypotheses = "hypotheses";
+inline constexpr const char* kDiscarded = "discarded";
 inline constexpr const char* kConfirmedInRow = "confirmed_in_row";
 inline constexpr const char* kUnconfirmedInRow = "unconfirmed_in_row";
 inline constexpr const char* kConfirmations = "confirmations";

@@ -48,6 +48,7 @@ struct SessionCounts {
     double timestamp_s = 0.0;
     std::string state;
     std::size_t hypotheses = 0;
+    std::vector<std::string> discarded;  // the hypotheses discarded at that scan, and why
   };
   std::vector<HypothesesPoint> hypotheses_over_time;
   // Loop closure: closures tried, accepted, and the renders of the map they caused.

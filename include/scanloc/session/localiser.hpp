@@ -11,6 +11,7 @@
 // carried elsewhere) is lost: it is held on as one hypothesis among those a new search finds.
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "scanloc/maps/line_map.hpp"
@@ -73,8 +74,8 @@ class Localiser : public ScanProcessor {
   bool SearchDue(const Iteration& iteration) const;
   void Search(IterationRecord& record, const Iteration& iteration);
   void Track(IterationRecord& record, const Iteration& iteration);
-  void Prune();
-  bool OutCosted(const Hypothesis& h) const;
+  void Prune(IterationRecord& record);
+  std::string OutCosted(const Hypothesis& h) const;
   bool Costed(const Hypothesis& h) const;
   LocalisationOptions BoundedOptions(IterationRecord& record) const;
   void Conclude(IterationRecord& record);

@@ -61,6 +61,9 @@ struct IterationRecord {
   // hypothesis has no posture (posed false): it is left out of the trajectory.
   std::string state;
   std::vector<Hypothesis> hypotheses;
+  // The hypotheses discarded at this scan: "(x, y, θ): why" (not validated k scans in a row, or
+  // costlier than another beyond chance).
+  std::vector<std::string> discarded;
   bool posed = true;
   bool lost = false;           // lost after this scan (several unconfirmed in a row)
   bool recovered = false;      // confirmed after being lost
