@@ -1,10 +1,14 @@
 # `cmake --install` puts the library, its public headers (scanloc/<layer>/...), the scanloc
 # executable and a CMake package (scanlocConfig.cmake, exported target scanloc::scanloc) under the
 # prefix, so that another project's find_package(scanloc CONFIG REQUIRED) links it.
-# scripts/check-install.sh builds it shared: a shared scanloc keeps its private dependencies
-# (Ceres, PCL, nanoflann, zlib, rosbag) to itself; a static one makes the consumer find them too.
+# A shared scanloc (the default) keeps its private dependencies (Ceres, PCL, nanoflann, zlib,
+# rosbag) to itself; a static one makes the consumer find them too. scripts/check-install.sh checks
+# the package from outside.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
+
+# The installed executable finds the installed library beside it, wherever the prefix is moved.
+set_target_properties(scanloc_app PROPERTIES INSTALL_RPATH "$ORIGIN/../${CMAKE_INSTALL_LIBDIR}")
 
 set(SCANLOC_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/scanloc)
 install(TARGETS scanloc EXPORT scanlocTargets

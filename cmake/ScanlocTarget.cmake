@@ -15,3 +15,14 @@ function(scanloc_configure_target target)
     target_link_options(${target} PRIVATE -fsanitize=address,undefined)
   endif()
 endfunction()
+
+# A program around the library (the app, a test): configured as the library is, but under the
+# sanitizers compiled without the optimiser. Its passes over the sanitizers' checks took most of the
+# sanitized build's time (CLI11 and GoogleTest code), and the code worth running fast is the
+# library's; the checks themselves stay.
+function(scanloc_configure_driver target)
+  scanloc_configure_target(${target})
+  if(SCANLOC_SANITIZE)
+    target_compile_options(${target} PRIVATE -O0)
+  endif()
+endfunction()
