@@ -1,4 +1,4 @@
-// The point-map simulated scan (3.7) through the k-d tree against every map point, on maps of
+// The point-map simulated scan (3.7) by the block walk against every map point, on maps of
 // 10k to 10M points at one local density, and the cost of growing a map scan by scan (3.6).
 //
 // The world is a grid of closed square rooms, walls every 5 m sampled every 0.05 m (about 8 points

@@ -227,10 +227,107 @@ TEST(SimulateFromPoints, IndexedEqualsBruteForceOnRandomMapsOfDiscsAndSurfels) {
         ASSERT_EQ(a.IsValid(k), b.IsValid(k)) << "size " << size << " beam " << k;
         if (a.IsValid(k)) {
           ASSERT_DOUBLE_EQ(a.ranges_m[k], b.ranges_m[k]);
+          ASSERT_EQ(a.hit_index[k], b.hit_index[k]) << "size " << size << " beam " << k;
         }
       }
     }
   }
+}
+
+// The ring building with a 2 m doorway in each outer wall and a far wall 30 m beyond the east
+// door: beams leave through the doors, so the block walk must search past the building.
+LineMap BuildingWithDoors() {
+  LineMap map = testing::RingBuilding();
+  LineMap doors;
+  for (const Segment& segment : map.segments) {
+    const bool outer = segment.Length() >= 16.0;
+    if (!outer) {
+      doors.segments.push_back(segment);
+      continue;
+    }
+    const Eigen::Vector2d mid = 0.5 * (segment.a + segment.b);
+    const Eigen::Vector2d along = (segment.b - segment.a).normalized();
+    doors.segments.push_back({segment.a, mid - along});
+    doors.segments.push_back({mid + along, segment.b});
+  }
+  doors.segments.push_back({{54.0, -10.0}, {54.0, 26.0}});
+  return doors;
+}
+
+// A map grown as a session grows it: noisy scans merged into cell means (which move off their
+// first samples), clutter that later scans carve away (dead slots).
+PointMap GrownMap(const LineMap& building, std::mt19937& rng) {
+  PointMap map;  // the default cell size: samples merge
+  std::uniform_real_distribution<double> x(1.0, 23.0), y(1.0, 3.0), yaw(-M_PI, M_PI);
+  std::vector<Pose2D> poses;
+  for (int i = 0; i < 12; ++i) poses.emplace_back(x(rng), i % 2 ? y(rng) : 16.0 - y(rng), yaw(rng));
+  for (std::size_t i = 0; i < poses.size(); ++i)
+    map.InsertScan(testing::NoisyScan(building, poses[i], 720, 0.02, 100 + i), poses[i]);
+  std::vector<Eigen::Vector2d> clutter;
+  for (int i = 0; i < 300; ++i) clutter.emplace_back(x(rng), y(rng));
+  map.Insert(clutter, std::vector<double>(clutter.size(), 0.05));
+  for (int pass = 0; pass < 3; ++pass)
+    for (std::size_t i = 0; i < poses.size(); ++i)
+      map.CarveFreeSpace(testing::NoisyScan(building, poses[i], 720, 0.0, 0), poses[i], 0.2, 0.0);
+  return map;
+}
+
+TEST(SimulateFromPoints, BlockWalkEqualsBruteForceOnAGrownMapWithDoorsToTheLastTie) {
+  std::mt19937 rng(77);
+  const PointMap map = GrownMap(BuildingWithDoors(), rng);
+  ASSERT_LT(map.live_size(), map.size());  // carving removed clutter: dead slots are skipped
+  std::uniform_real_distribution<double> x(-20.0, 70.0), y(-20.0, 36.0), yaw(-M_PI, M_PI);
+  int open_beams = 0, hits = 0;
+  for (const double range_max_m : {5.0, 20.0, 80.0})
+    for (const double footprint : {0.0, 1.0, 4.0})
+      for (int trial = 0; trial < 6; ++trial) {
+        const ScanLayout layout = MakeLayout(trial % 2 ? 181 : 1081, trial % 3 ? M_PI : 2 * M_PI,
+                                             range_max_m);
+        const Pose2D pose = trial < 4 ? Pose2D{x(rng) / 4.0 + 12.0, y(rng) / 8.0 + 2.0, yaw(rng)}
+                                      : Pose2D{x(rng), y(rng), yaw(rng)};
+        const PointSimulationOptions options{footprint};
+        const SimulatedScan a = SimulateFromPoints(map, layout, pose, options);
+        const SimulatedScan b = SimulateFromPointsBruteForce(map, layout, pose, options);
+        for (std::size_t k = 0; k < layout.beam_count; ++k) {
+          ASSERT_EQ(a.IsValid(k), b.IsValid(k)) << range_max_m << " m, beam " << k;
+          open_beams += !a.IsValid(k);
+          if (!a.IsValid(k)) continue;
+          ++hits;
+          ASSERT_EQ(a.ranges_m[k], b.ranges_m[k]) << range_max_m << " m, beam " << k;
+          ASSERT_EQ(a.hit_index[k], b.hit_index[k]) << range_max_m << " m, beam " << k;
+        }
+      }
+  // Both kinds of beam were exercised: the doors and the short ranges leave many open.
+  EXPECT_GT(open_beams, 5000);
+  EXPECT_GT(hits, 5000);
+}
+
+TEST(SimulateFromPoints, EqualRangesKeepTheLowerIndexWhateverBlockIsVisitedFirst) {
+  // Two discs at the same range (exactly: mirrored dyadic offsets), with footprints so wide that
+  // both cover the beams between them. Point 1 lies in a nearer ring of blocks than point 0, so
+  // it is offered first; the brute force, in index order, keeps point 0.
+  PointMap map(PointMapOptions{0.0, 0.3});
+  map.Restore({{4.75, 1.5}, {2.5, 3.75}}, {0.3, 0.3});
+  const Pose2D pose{1.5, 0.5, 0.0};  // offsets (3.25, 1.0) and (1.0, 3.25)
+  const ScanLayout layout = MakeLayout(360, 2.0 * M_PI, 20.0);
+  const PointSimulationOptions wide{40.0};
+  const SimulatedScan a = SimulateFromPoints(map, layout, pose, wide);
+  const SimulatedScan b = SimulateFromPointsBruteForce(map, layout, pose, wide);
+  const std::size_t between = 180 + 45;  // bearing 45°, midway
+  ASSERT_TRUE(b.IsValid(between));
+  EXPECT_EQ(b.hit_index[between], 0);
+  EXPECT_EQ(a.hit_index, b.hit_index);
+  EXPECT_EQ(a.ranges_m, b.ranges_m);
+}
+
+TEST(SimulateFromPoints, FarFromTheMapEveryBeamIsOpenAndHugeCoordinatesStillWork) {
+  PointMap map;
+  map.Insert(std::vector<Eigen::Vector2d>{{0.0, 0.0}, {1e12, 0.0}}, {0.05, 0.05});
+  const ScanLayout layout = MakeLayout(360, 2.0 * M_PI, 20.0);
+  const SimulatedScan far = SimulateFromPoints(map, layout, {500.0, 500.0, 0.0});
+  EXPECT_EQ(std::count(far.hit_source.begin(), far.hit_source.end(), HitSource::kNone), 360);
+  const SimulatedScan near_huge = SimulateFromPoints(map, layout, {1e12 - 3.0, 0.0, 0.0});
+  EXPECT_NEAR(near_huge.ranges_m[180], 3.0, 1e-3);  // the point 3 m ahead (bearing 0: beam 180)
 }
 
 TEST(Simulate, BothMapsKeepTheNearerHitPerBeam) {

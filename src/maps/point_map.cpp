@@ -84,6 +84,8 @@ struct PointMap::Storage {
   // Every point ever added, by the kSearchCellM cell of its first sample (dead ones included:
   // searches skip them).
   std::unordered_map<std::int64_t, std::vector<std::uint32_t>> search_cells;
+  // The same by kBlockSideM block, for region culling.
+  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> blocks;
   CloudAdaptor adaptor{&indexed};
   KdTree tree{2, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16)};
 };
@@ -192,6 +194,7 @@ std::size_t PointMap::Add(const std::vector<Eigen::Vector2d>& points_world,
       continue;
     }
     s.search_cells[CellKey(p, kSearchCellM)].push_back(static_cast<std::uint32_t>(s.points.size()));
+    s.blocks[CellKey(p, kBlockSideM)].push_back(static_cast<std::uint32_t>(s.points.size()));
     s.points.push_back(p);
     s.indexed.push_back(p);
     s.bounds.extend(p);
@@ -348,6 +351,22 @@ void PointMap::RadiusSearch(const Eigen::Vector2d& centre, double radius_m,
     if (d2 < radius2) found[kept++] = {index, d2};
   }
   found.resize(kept);
+}
+
+std::int64_t PointMap::BlockIndex(double coordinate_m) {
+  return CellIndex(coordinate_m, kBlockSideM);
+}
+
+const std::vector<std::uint32_t>* PointMap::Block(std::int64_t ix, std::int64_t iy) const {
+  const auto block = storage_->blocks.find(CellKey(ix, iy));
+  return block == storage_->blocks.end() ? nullptr : &block->second;
+}
+
+PointMap::BlockRange PointMap::block_range() const {
+  const Eigen::AlignedBox2d& bounds = storage_->bounds;
+  if (bounds.isEmpty()) return {};
+  return {BlockIndex(bounds.min().x()), BlockIndex(bounds.max().x()), BlockIndex(bounds.min().y()),
+          BlockIndex(bounds.max().y())};
 }
 
 std::vector<std::pair<std::uint32_t, double>> PointMap::KNearest(const Eigen::Vector2d& centre,

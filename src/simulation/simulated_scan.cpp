@@ -3,17 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
-#include "scanloc/common/parallel_for.hpp"
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/maps/point_map.hpp"
 
 namespace scanloc {
 namespace {
 
-// The point-map scan searches this far first; in a closed room every beam finds its return there.
-constexpr double kFirstRingM = 4.0;
-// Fewer points than this per core are offered on one thread (a thread costs tens of µs).
-constexpr std::size_t kMinPointsPerThread = 1500;
+// Beyond this many blocks from the map's blocks (coordinates near the limits of a double), the
+// block walk's integer ring arithmetic is not used: the simulation visits every point.
+constexpr double kMaxWalkBlocks = 1e9;
 
 SimulatedScan EmptySimulation(const ScanLayout& layout) {
   const std::size_t beam_count = layout.beam_count;
@@ -33,6 +31,17 @@ void Offer(SimulatedScan& sim, std::size_t beam, double range_m, HitSource sourc
     sim.hit_source[beam] = source;
     sim.hit_index[beam] = index;
   }
+}
+
+// A map point's offer: of equal ranges the lowest index is kept, as a pass over every point in
+// index order keeps it, so that the scan does not depend on the order points are offered in.
+void OfferPointHit(SimulatedScan& sim, std::size_t beam, double range_m, std::int32_t index) {
+  if (sim.hit_source[beam] != HitSource::kNone && range_m == sim.ranges_m[beam] &&
+      index < sim.hit_index[beam] && sim.hit_source[beam] == HitSource::kPoint) {
+    sim.hit_index[beam] = index;
+    return;
+  }
+  Offer(sim, beam, range_m, HitSource::kPoint, index);
 }
 
 // Calls visit(beam) for each beam whose bearing (laser frame) lies in [from, from + span], span in
@@ -118,8 +127,136 @@ void OfferPoint(SimulatedScan& sim, const PointMap& map, const Pose2D& T_world_l
             beam_range = t;
           }
         }
-        Offer(sim, beam, beam_range, HitSource::kPoint, static_cast<std::int32_t>(i));
+        OfferPointHit(sim, beam, beam_range, static_cast<std::int32_t>(i));
       });
+}
+
+// How far a map point may reach towards the laser: a surfel's patch or a disc's footprint, never
+// more than this in front of the point's own range (OfferPoint's patch_half_m, over all points).
+double PatchMargin(const PointMap& map, const PointSimulationOptions& options) {
+  return std::max(0.5 * options.footprint_factor * map.options().max_point_spacing_m, 1e-3);
+}
+
+// What the walk over the point map's blocks needs to know of one simulated scan.
+struct BlockWalk {
+  const PointMap& map;
+  const Pose2D& T_world_laser;
+  const std::vector<Eigen::Vector2d>& directions;
+  const PointSimulationOptions& options;
+  double patch_margin_m;
+  std::size_t open_probe = 0;  // the beam last found open: it usually stays so (no return)
+};
+
+// True when some beam in [bearing − half, bearing + half] (laser frame) could still take a hit
+// offered beyond limit_m: it has none yet, or its hit is not nearer than limit_m.
+bool AnyBeamOpen(const SimulatedScan& sim, double bearing_rad, double half_rad, double limit_m) {
+  if (half_rad >= 0.5 * M_PI) return true;
+  bool open = false;
+  ForEachBeamInInterval(sim.layout, sim.size(), bearing_rad - half_rad, 2.0 * half_rad,
+                        [&](std::size_t beam) {
+                          open = open || !sim.IsValid(beam) || !(sim.ranges_m[beam] < limit_m);
+                        });
+  return open;
+}
+
+// Whether the points of block (ix, iy) may change the scan. They lie in a disc around the block's
+// centre; each is farther than `nearest`, so it offers no range below nearest − patch margin,
+// and only to beams within its footprint (at most max(½ step, patch margin / nearest)) of a
+// bearing inside the disc's angular span. When no beam there is open at that range, none of them
+// can change the scan.
+bool BlockMayShow(const SimulatedScan& sim, const BlockWalk& walk, std::int64_t ix,
+                  std::int64_t iy) {
+  const double side = PointMap::kBlockSideM;
+  const Eigen::Vector2d centre((static_cast<double>(ix) + 0.5) * side,
+                               (static_cast<double>(iy) + 0.5) * side);
+  const double radius = side * M_SQRT1_2 + walk.map.block_margin_m();
+  const Eigen::Vector2d delta = centre - walk.T_world_laser.Translation();
+  const double centre_distance = delta.norm();
+  const double nearest = centre_distance - radius - 1e-9;
+  if (nearest >= sim.layout.range_max_m) return false;
+  if (nearest <= walk.patch_margin_m) return true;  // beside the laser: any beam may see it
+  const double half = std::asin(radius / centre_distance) +
+                      std::max(0.5 * sim.layout.angle_increment_rad, walk.patch_margin_m / nearest);
+  const double bearing = std::atan2(delta.y(), delta.x()) - walk.T_world_laser.yaw_rad;
+  return AnyBeamOpen(sim, bearing, half, nearest - walk.patch_margin_m);
+}
+
+// True when every beam holds a hit nearer than limit_m: nothing offered beyond it can change them.
+bool AllBeamsClosed(const SimulatedScan& sim, double limit_m, std::size_t& open_probe) {
+  const auto open = [&](std::size_t k) { return !sim.IsValid(k) || !(sim.ranges_m[k] < limit_m); };
+  if (open_probe < sim.size() && open(open_probe)) return false;
+  for (std::size_t k = 0; k < sim.size(); ++k)
+    if (open(k)) {
+      open_probe = k;
+      return false;
+    }
+  return true;
+}
+
+// Calls visit(ix, iy) for the blocks of ring r (Chebyshev distance r from block (ox, oy)) that lie
+// in `range`.
+template <class Visit>
+void ForEachBlockInRing(std::int64_t ox, std::int64_t oy, std::int64_t r,
+                        const PointMap::BlockRange& range, Visit visit) {
+  const auto in = [](std::int64_t v, std::int64_t lo, std::int64_t hi) { return lo <= v && v <= hi; };
+  if (r == 0) {
+    if (in(ox, range.x0, range.x1) && in(oy, range.y0, range.y1)) visit(ox, oy);
+    return;
+  }
+  const std::int64_t x_lo = std::max(ox - r, range.x0), x_hi = std::min(ox + r, range.x1);
+  for (const std::int64_t iy : {oy - r, oy + r})
+    if (in(iy, range.y0, range.y1))
+      for (std::int64_t ix = x_lo; ix <= x_hi; ++ix) visit(ix, iy);
+  const std::int64_t y_lo = std::max(oy - r + 1, range.y0), y_hi = std::min(oy + r - 1, range.y1);
+  for (const std::int64_t ix : {ox - r, ox + r})
+    if (in(ix, range.x0, range.x1))
+      for (std::int64_t iy = y_lo; iy <= y_hi; ++iy) visit(ix, iy);
+}
+
+// Offers the points of the blocks around the laser ring by ring, nearest ring first, skipping the
+// blocks whose beams are all closed nearer; stops once every beam is closed nearer than the next
+// ring, or the next ring is out of range or beyond the map.
+void WalkBlocks(SimulatedScan& sim, BlockWalk& walk) {
+  const PointMap::BlockRange range = walk.map.block_range();
+  const Eigen::Vector2d origin = walk.T_world_laser.Translation();
+  const std::int64_t ox = PointMap::BlockIndex(origin.x()), oy = PointMap::BlockIndex(origin.y());
+  const double first_ring =
+      std::max({0.0, static_cast<double>(range.x0) - static_cast<double>(ox),
+                static_cast<double>(ox) - static_cast<double>(range.x1),
+                static_cast<double>(range.y0) - static_cast<double>(oy),
+                static_cast<double>(oy) - static_cast<double>(range.y1)});
+  const double last_ring = std::max({static_cast<double>(range.x1) - static_cast<double>(ox),
+                                     static_cast<double>(ox) - static_cast<double>(range.x0),
+                                     static_cast<double>(range.y1) - static_cast<double>(oy),
+                                     static_cast<double>(oy) - static_cast<double>(range.y0)});
+  const double side = PointMap::kBlockSideM, margin = walk.map.block_margin_m();
+  for (double ring = first_ring; ring <= last_ring; ring += 1.0) {
+    // Every block of ring r lies at least (r − 1)·side from the laser (its own block is ring 0).
+    const double ring_nearest = std::max(0.0, (ring - 1.0) * side - margin) - 1e-9;
+    if (ring_nearest >= sim.layout.range_max_m) return;
+    if (AllBeamsClosed(sim, ring_nearest - walk.patch_margin_m, walk.open_probe)) return;
+    ForEachBlockInRing(ox, oy, static_cast<std::int64_t>(ring), range,
+                       [&](std::int64_t ix, std::int64_t iy) {
+                         const std::vector<std::uint32_t>* points = walk.map.Block(ix, iy);
+                         if (points == nullptr || !BlockMayShow(sim, walk, ix, iy)) return;
+                         for (const std::uint32_t i : *points)
+                           if (walk.map.alive(i))
+                             OfferPoint(sim, walk.map, walk.T_world_laser, walk.directions,
+                                        walk.options, i);
+                       });
+  }
+}
+
+// Whether the ring arithmetic of WalkBlocks stays well inside 64-bit integers.
+bool WalkableBlocks(const PointMap& map, const Pose2D& T_world_laser) {
+  const PointMap::BlockRange range = map.block_range();
+  const double limit = kMaxWalkBlocks * PointMap::kBlockSideM;
+  const auto within = [&](double v) { return std::abs(v) < limit; };
+  return range.x0 <= range.x1 && within(T_world_laser.x_m) && within(T_world_laser.y_m) &&
+         within(static_cast<double>(range.x0) * PointMap::kBlockSideM) &&
+         within(static_cast<double>(range.x1) * PointMap::kBlockSideM) &&
+         within(static_cast<double>(range.y0) * PointMap::kBlockSideM) &&
+         within(static_cast<double>(range.y1) * PointMap::kBlockSideM);
 }
 
 }  // namespace
@@ -158,50 +295,16 @@ SimulatedScan SimulateFromLines(const LineMap& map, const ScanLayout& layout,
 SimulatedScan SimulateFromPoints(const PointMap& map, const ScanLayout& layout,
                                  const Pose2D& T_world_laser,
                                  const PointSimulationOptions& options) {
+  if (map.empty()) return EmptySimulation(layout);
+  if (!WalkableBlocks(map, T_world_laser))
+    return SimulateFromPointsBruteForce(map, layout, T_world_laser, options);
+  // Front to back over the map's blocks: in a closed room only the blocks around the laser are
+  // visited; beyond a doorway, only the blocks the open beams could see. The scan equals the
+  // brute force's to the last tie (OfferPointHit).
   SimulatedScan sim = EmptySimulation(layout);
-  // Nearest ring first: once every beam holds a hit nearer than anything beyond the ring could
-  // offer (a point at distance d offers no range below d minus its patch), the farther points
-  // cannot change the scan, which equals the brute force. In a closed room only the first ring is
-  // searched; one beam without a return (a doorway, open space) needs the rest of the range, and
-  // on the benchmark logs nearly every scan has one, so the rest is searched at once (rings
-  // doubling up to the range searched the inner points again at every ring).
-  const double patch_margin_m = 0.5 * options.footprint_factor * map.options().max_point_spacing_m;
-  const double max_range_m = layout.range_max_m;
   const std::vector<Eigen::Vector2d> directions = BeamDirections(layout, T_world_laser);
-  // Reused from call to call (a session simulates a few scans per iteration): no allocation.
-  thread_local std::vector<std::pair<std::uint32_t, double>> found_buffer;
-  // A reference, not the name: inside the worker threads `found_buffer` would be their own.
-  std::vector<std::pair<std::uint32_t, double>>& found = found_buffer;
-  // Offers the points found at or beyond min_distance_m, split over the cores: each chunk fills
-  // its own scan, merged in chunk order, which keeps the serial loop's result to the last tie.
-  auto offer_found = [&](double min_distance_m) {
-    const double min2 = min_distance_m * min_distance_m;
-    std::vector<SimulatedScan> partial(ParallelChunkCount(found.size(), kMinPointsPerThread));
-    ParallelFor(found.size(), kMinPointsPerThread,
-                [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-                  SimulatedScan& part = chunk == 0 ? sim : partial[chunk];
-                  if (chunk > 0) part = EmptySimulation(layout);
-                  for (std::size_t i = begin; i < end; ++i)
-                    if (found[i].second >= min2)
-                      OfferPoint(part, map, T_world_laser, directions, options, found[i].first);
-                });
-    for (std::size_t chunk = 1; chunk < partial.size(); ++chunk)
-      for (std::size_t k = 0; k < sim.size(); ++k)
-        if (partial[chunk].IsValid(k))
-          Offer(sim, k, partial[chunk].ranges_m[k], partial[chunk].hit_source[k],
-                partial[chunk].hit_index[k]);
-  };
-  const double ring_m = std::min(max_range_m, kFirstRingM);
-  map.RadiusSearch(T_world_laser.Translation(), ring_m, found);
-  offer_found(0.0);
-  if (ring_m >= max_range_m) return sim;
-  const double settled_m = ring_m - patch_margin_m;
-  bool settled = true;
-  for (std::size_t k = 0; k < sim.size() && settled; ++k)
-    settled = sim.IsValid(k) && sim.ranges_m[k] <= settled_m;
-  if (settled) return sim;
-  map.RadiusSearch(T_world_laser.Translation(), max_range_m, found);
-  offer_found(ring_m);
+  BlockWalk walk{map, T_world_laser, directions, options, PatchMargin(map, options)};
+  WalkBlocks(sim, walk);
   return sim;
 }
 

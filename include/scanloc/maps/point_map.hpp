@@ -87,6 +87,20 @@ class PointMap {
   std::vector<std::pair<std::uint32_t, double>> KNearest(const Eigen::Vector2d& centre,
                                                          std::size_t k) const;
 
+  // Coarse blocks, for searches that cull whole regions at once (the simulated scan skips the
+  // blocks its beams cannot see). Block (ix, iy) lists the slots, dead ones included, whose first
+  // sample lies in [ix·s, (ix+1)·s) × [iy·s, (iy+1)·s) with s = kBlockSideM; their means lie within
+  // block_margin_m() of that square. Block returns nullptr for a block that holds none.
+  static constexpr double kBlockSideM = 2.0;
+  struct BlockRange {
+    std::int64_t x0 = 0, x1 = -1, y0 = 0, y1 = -1;  // inclusive; empty when x1 < x0
+  };
+  static std::int64_t BlockIndex(double coordinate_m);
+  const std::vector<std::uint32_t>* Block(std::int64_t ix, std::int64_t iy) const;
+  double block_margin_m() const { return MaxIndexDisplacement(); }
+  // The blocks spanned by every point ever added.
+  BlockRange block_range() const;
+
  private:
   // How far a cell mean may lie from the first sample the k-d tree indexes (one cell diagonal).
   double MaxIndexDisplacement() const;
