@@ -60,6 +60,36 @@ std::int64_t CellKey(const Eigen::Vector2d& p, double cell_size_m) {
 constexpr double kSearchCellM = 0.5;
 constexpr std::int64_t kMaxSearchCells = 16;
 
+// Which blocks a scan's carving must look into: those holding a point that may lie in front of
+// the return of the beam it falls in (CarveFreeSpace's test, bounded over the block).
+struct CarvedBlocks {
+  const Pose2D& T_world_laser;
+  const ScanLayout& layout;
+  const std::vector<double>& nearest;  // per beam, the nearest return of it and its neighbours
+  double margin_m, margin_per_m, block_margin_m;
+
+  bool MayHoldCarved(std::int64_t ix, std::int64_t iy) const {
+    const double side = PointMap::kBlockSideM;
+    const Eigen::Vector2d centre((static_cast<double>(ix) + 0.5) * side,
+                                 (static_cast<double>(iy) + 0.5) * side);
+    const double radius = side * M_SQRT1_2 + block_margin_m;  // a disc holding the block's means
+    const Eigen::Vector2d delta = centre - T_world_laser.Translation();
+    const double centre_distance = delta.norm();
+    const double closest = centre_distance - radius - 1e-9;
+    if (closest <= layout.range_min_m) return true;  // beside the laser: look
+    // Each point falls in the beam nearest its bearing, within half a step of the disc's span.
+    const double half = std::asin(radius / centre_distance) + layout.angle_increment_rad;
+    if (half >= 0.5 * M_PI) return true;
+    const double bearing = std::atan2(delta.y(), delta.x()) - T_world_laser.yaw_rad;
+    bool may = false;
+    ForEachBeamInInterval(layout, bearing - half, 2.0 * half, [&](std::size_t beam) {
+      const double hit = nearest[beam];
+      may = may || (hit >= 0.0 && closest < hit - margin_m - margin_per_m * hit);
+    });
+    return may;
+  }
+};
+
 }  // namespace
 
 // A cell's point is the running mean of the samples that fell in it, so that the noise of many
@@ -85,7 +115,11 @@ struct PointMap::Storage {
   // searches skip them).
   std::unordered_map<std::int64_t, std::vector<std::uint32_t>> search_cells;
   // The same by kBlockSideM block, for region culling.
-  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> blocks;
+  struct Block {
+    std::int64_t ix, iy;
+    std::vector<std::uint32_t> slots;
+  };
+  std::unordered_map<std::int64_t, Block> blocks;
   CloudAdaptor adaptor{&indexed};
   KdTree tree{2, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16)};
 };
@@ -194,7 +228,9 @@ std::size_t PointMap::Add(const std::vector<Eigen::Vector2d>& points_world,
       continue;
     }
     s.search_cells[CellKey(p, kSearchCellM)].push_back(static_cast<std::uint32_t>(s.points.size()));
-    s.blocks[CellKey(p, kBlockSideM)].push_back(static_cast<std::uint32_t>(s.points.size()));
+    const std::int64_t block_x = BlockIndex(p.x()), block_y = BlockIndex(p.y());
+    s.blocks.try_emplace(CellKey(block_x, block_y), Storage::Block{block_x, block_y, {}})
+        .first->second.slots.push_back(static_cast<std::uint32_t>(s.points.size()));
     s.points.push_back(p);
     s.indexed.push_back(p);
     s.bounds.extend(p);
@@ -266,9 +302,16 @@ std::size_t PointMap::CarveFreeSpace(const LaserScan& scan, const Pose2D& T_worl
   const Pose2D T_laser_world = T_world_laser.Inverse();
   const double angle_min = scan.layout.angle_min_rad;
   const double increment = scan.layout.angle_increment_rad;
+  const CarvedBlocks carved{T_world_laser, scan.layout, nearest, margin_m, margin_per_m,
+                            MaxIndexDisplacement()};
   Storage& s = *storage_;
   std::size_t removed = 0;
-  for (const auto& [index, unused] : RadiusSearch(T_world_laser.Translation(), reach_m)) {
+  std::vector<std::pair<std::uint32_t, double>> candidates;
+  RadiusSearchInBlocks(
+      T_world_laser.Translation(), reach_m,
+      [&carved](std::int64_t ix, std::int64_t iy) { return carved.MayHoldCarved(ix, iy); },
+      candidates);
+  for (const auto& [index, unused] : candidates) {
     const Eigen::Vector2d q = T_laser_world.Transform(s.points[index]);
     const double range = q.norm();
     if (range <= scan.layout.range_min_m) continue;
@@ -359,7 +402,46 @@ std::int64_t PointMap::BlockIndex(double coordinate_m) {
 
 const std::vector<std::uint32_t>* PointMap::Block(std::int64_t ix, std::int64_t iy) const {
   const auto block = storage_->blocks.find(CellKey(ix, iy));
-  return block == storage_->blocks.end() ? nullptr : &block->second;
+  return block == storage_->blocks.end() ? nullptr : &block->second.slots;
+}
+
+void PointMap::RadiusSearchInBlocks(
+    const Eigen::Vector2d& centre, double radius_m,
+    const std::function<bool(std::int64_t, std::int64_t)>& keep_block,
+    std::vector<std::pair<std::uint32_t, double>>& found) const {
+  found.clear();
+  if (empty() || !(radius_m > 0.0)) return;
+  const Storage& s = *storage_;
+  const double widened = radius_m + MaxIndexDisplacement();
+  const BlockRange map = block_range();
+  const BlockRange box{std::max(map.x0, BlockIndex(centre.x() - widened)),
+                       std::min(map.x1, BlockIndex(centre.x() + widened)),
+                       std::max(map.y0, BlockIndex(centre.y() - widened)),
+                       std::min(map.y1, BlockIndex(centre.y() + widened))};
+  if (box.x1 < box.x0 || box.y1 < box.y0) return;
+  const double radius2 = radius_m * radius_m;
+  const auto search = [&](const Storage::Block& block) {
+    if (!keep_block(block.ix, block.iy)) return;
+    for (const std::uint32_t i : block.slots) {
+      if (!s.alive[i]) continue;
+      const double d2 = (s.points[i] - centre).squaredNorm();
+      if (d2 < radius2) found.emplace_back(i, d2);
+    }
+  };
+  // The box's blocks one by one, or every block when the box has more (a huge radius).
+  const double box_blocks = (static_cast<double>(box.x1) - static_cast<double>(box.x0) + 1.0) *
+                            (static_cast<double>(box.y1) - static_cast<double>(box.y0) + 1.0);
+  if (box_blocks > static_cast<double>(s.blocks.size())) {
+    for (const auto& [key, block] : s.blocks)
+      if (block.ix >= box.x0 && block.ix <= box.x1 && block.iy >= box.y0 && block.iy <= box.y1)
+        search(block);
+    return;
+  }
+  for (std::int64_t ix = box.x0; ix <= box.x1; ++ix)
+    for (std::int64_t iy = box.y0; iy <= box.y1; ++iy) {
+      const auto block = s.blocks.find(CellKey(ix, iy));
+      if (block != s.blocks.end()) search(block->second);
+    }
 }
 
 PointMap::BlockRange PointMap::block_range() const {

@@ -44,23 +44,6 @@ void OfferPointHit(SimulatedScan& sim, std::size_t beam, double range_m, std::in
   Offer(sim, beam, range_m, HitSource::kPoint, index);
 }
 
-// Calls visit(beam) for each beam whose bearing (laser frame) lies in [from, from + span], span in
-// [0, π]; bearings are compared modulo 2π so an interval across the ±π seam is handled.
-template <class Visit>
-void ForEachBeamInInterval(const ScanLayout& layout, std::size_t beam_count, double from_rad,
-                           double span_rad, Visit visit) {
-  const double inc = layout.angle_increment_rad;
-  const double start = NormalizeAngle(from_rad);
-  for (const double shift : {-2.0 * M_PI, 0.0, 2.0 * M_PI}) {
-    const double lo = start + shift - layout.angle_min_rad;
-    const double hi = lo + span_rad;
-    const double first = std::max(0.0, std::ceil(lo / inc - 1e-9));
-    const double last =
-        std::min(static_cast<double>(beam_count) - 1.0, std::floor(hi / inc + 1e-9));
-    for (double k = first; k <= last; k += 1.0) visit(static_cast<std::size_t>(k));
-  }
-}
-
 // Range along the unit ray origin + t·u to segment [a, b]; negative when there is no hit.
 double RaySegmentRange(const Eigen::Vector2d& origin, const Eigen::Vector2d& u,
                        const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
@@ -116,7 +99,7 @@ void OfferPoint(SimulatedScan& sim, const PointMap& map, const Pose2D& T_world_l
   const bool surfel = normal.squaredNorm() > 0.0;
   const double patch_half_m = std::max(0.5 * options.footprint_factor * map.spacing(i), 1e-3);
   ForEachBeamInInterval(
-      layout, sim.size(), bearing - half_width, 2.0 * half_width, [&](std::size_t beam) {
+      layout, bearing - half_width, 2.0 * half_width, [&](std::size_t beam) {
         double beam_range = range;
         if (surfel) {
           const Eigen::Vector2d& u = directions[beam];
@@ -152,7 +135,7 @@ struct BlockWalk {
 bool AnyBeamOpen(const SimulatedScan& sim, double bearing_rad, double half_rad, double limit_m) {
   if (half_rad >= 0.5 * M_PI) return true;
   bool open = false;
-  ForEachBeamInInterval(sim.layout, sim.size(), bearing_rad - half_rad, 2.0 * half_rad,
+  ForEachBeamInInterval(sim.layout, bearing_rad - half_rad, 2.0 * half_rad,
                         [&](std::size_t beam) {
                           open = open || !sim.IsValid(beam) || !(sim.ranges_m[beam] < limit_m);
                         });
@@ -280,7 +263,7 @@ SimulatedScan SimulateFromLines(const LineMap& map, const ScanLayout& layout,
     // laser subtends less than π); its start may lie on either side of the ±π seam.
     const double sweep = NormalizeAngle(b2 - b1);
     const double from = sweep >= 0.0 ? b1 : b2;
-    ForEachBeamInInterval(layout, layout.beam_count, from, std::abs(sweep), [&](std::size_t beam) {
+    ForEachBeamInInterval(layout, from, std::abs(sweep), [&](std::size_t beam) {
       const double bearing = T_world_laser.yaw_rad + layout.Bearing(beam);
       const Eigen::Vector2d u(std::cos(bearing), std::sin(bearing));
       // Equivalent to the sine law (3.5), r(δ) = r1·sin α / sin(α + δ), evaluated per beam

@@ -2,6 +2,8 @@
 // A planar laser scan: N ranges at evenly spaced bearings, in the laser's own frame.
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "scanloc/geometry/pose2d.hpp"
@@ -46,6 +48,23 @@ bool IsValidRange(double range_m, const ScanLayout& layout);
 // A layout of `beam_count` beams over `fov_rad`, centred on the heading. For a full revolution
 // (fov = 2π) the last beam stops one step short of the first.
 ScanLayout MakeLayout(std::size_t beam_count, double fov_rad, double range_max_m);
+
+// Calls visit(beam) for each beam of `layout` whose bearing (laser frame) lies in
+// [from, from + span], span in [0, π]; bearings are compared modulo 2π so an interval across the
+// ±π seam is handled.
+template <class Visit>
+void ForEachBeamInInterval(const ScanLayout& layout, double from_rad, double span_rad, Visit visit) {
+  const double inc = layout.angle_increment_rad;
+  const double start = NormalizeAngle(from_rad);
+  for (const double shift : {-2.0 * M_PI, 0.0, 2.0 * M_PI}) {
+    const double lo = start + shift - layout.angle_min_rad;
+    const double hi = lo + span_rad;
+    const double first = std::max(0.0, std::ceil(lo / inc - 1e-9));
+    const double last =
+        std::min(static_cast<double>(layout.beam_count) - 1.0, std::floor(hi / inc + 1e-9));
+    for (double k = first; k <= last; k += 1.0) visit(static_cast<std::size_t>(k));
+  }
+}
 
 // The laser's fixed mounting on the robot: T_robot_laser. Postures are reported in robot
 // coordinates; scans are simulated from T_world_laser = T_world_robot * T_robot_laser.

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -100,6 +101,11 @@ class PointMap {
   double block_margin_m() const { return MaxIndexDisplacement(); }
   // The blocks spanned by every point ever added.
   BlockRange block_range() const;
+  // RadiusSearch's points that lie in the blocks keep_block(ix, iy) accepts (the carving keeps
+  // the blocks a scan saw through), in no particular order.
+  void RadiusSearchInBlocks(const Eigen::Vector2d& centre, double radius_m,
+                            const std::function<bool(std::int64_t, std::int64_t)>& keep_block,
+                            std::vector<std::pair<std::uint32_t, double>>& found) const;
 
  private:
   // How far a cell mean may lie from the first sample the k-d tree indexes (one cell diagonal).
