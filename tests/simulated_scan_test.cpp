@@ -281,8 +281,8 @@ TEST(SimulateFromPoints, BlockWalkEqualsBruteForceOnAGrownMapWithDoorsToTheLastT
   for (const double range_max_m : {5.0, 20.0, 80.0})
     for (const double footprint : {0.0, 1.0, 4.0})
       for (int trial = 0; trial < 6; ++trial) {
-        const ScanLayout layout = MakeLayout(trial % 2 ? 181 : 1081, trial % 3 ? M_PI : 2 * M_PI,
-                                             range_max_m);
+        const ScanLayout layout =
+            MakeLayout(trial % 2 ? 181 : 1081, trial % 3 ? M_PI : 2 * M_PI, range_max_m);
         const Pose2D pose = trial < 4 ? Pose2D{x(rng) / 4.0 + 12.0, y(rng) / 8.0 + 2.0, yaw(rng)}
                                       : Pose2D{x(rng), y(rng), yaw(rng)};
         const PointSimulationOptions options{footprint};

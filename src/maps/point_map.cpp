@@ -81,12 +81,10 @@ struct CarvedBlocks {
     const double half = std::asin(radius / centre_distance) + layout.angle_increment_rad;
     if (half >= 0.5 * M_PI) return true;
     const double bearing = std::atan2(delta.y(), delta.x()) - T_world_laser.yaw_rad;
-    bool may = false;
-    ForEachBeamInInterval(layout, bearing - half, 2.0 * half, [&](std::size_t beam) {
+    return AnyBeamInInterval(layout, bearing - half, 2.0 * half, [&](std::size_t beam) {
       const double hit = nearest[beam];
-      may = may || (hit >= 0.0 && closest < hit - margin_m - margin_per_m * hit);
+      return hit >= 0.0 && closest < hit - margin_m - margin_per_m * hit;
     });
-    return may;
   }
 };
 
@@ -302,8 +300,8 @@ std::size_t PointMap::CarveFreeSpace(const LaserScan& scan, const Pose2D& T_worl
   const Pose2D T_laser_world = T_world_laser.Inverse();
   const double angle_min = scan.layout.angle_min_rad;
   const double increment = scan.layout.angle_increment_rad;
-  const CarvedBlocks carved{T_world_laser, scan.layout, nearest, margin_m, margin_per_m,
-                            MaxIndexDisplacement()};
+  const CarvedBlocks carved{T_world_laser, scan.layout,  nearest,
+                            margin_m,      margin_per_m, MaxIndexDisplacement()};
   Storage& s = *storage_;
   std::size_t removed = 0;
   std::vector<std::pair<std::uint32_t, double>> candidates;

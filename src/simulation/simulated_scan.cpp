@@ -98,20 +98,19 @@ void OfferPoint(SimulatedScan& sim, const PointMap& map, const Pose2D& T_world_l
   const Eigen::Vector2d normal = map.normal(i);
   const bool surfel = normal.squaredNorm() > 0.0;
   const double patch_half_m = std::max(0.5 * options.footprint_factor * map.spacing(i), 1e-3);
-  ForEachBeamInInterval(
-      layout, bearing - half_width, 2.0 * half_width, [&](std::size_t beam) {
-        double beam_range = range;
-        if (surfel) {
-          const Eigen::Vector2d& u = directions[beam];
-          const double cos_incidence = normal.dot(u);
-          if (std::abs(cos_incidence) > 0.1) {
-            const double t = normal.dot(delta) / cos_incidence;
-            if (!(t > 0.0) || (t * u - delta).norm() > patch_half_m) return;
-            beam_range = t;
-          }
-        }
-        OfferPointHit(sim, beam, beam_range, static_cast<std::int32_t>(i));
-      });
+  ForEachBeamInInterval(layout, bearing - half_width, 2.0 * half_width, [&](std::size_t beam) {
+    double beam_range = range;
+    if (surfel) {
+      const Eigen::Vector2d& u = directions[beam];
+      const double cos_incidence = normal.dot(u);
+      if (std::abs(cos_incidence) > 0.1) {
+        const double t = normal.dot(delta) / cos_incidence;
+        if (!(t > 0.0) || (t * u - delta).norm() > patch_half_m) return;
+        beam_range = t;
+      }
+    }
+    OfferPointHit(sim, beam, beam_range, static_cast<std::int32_t>(i));
+  });
 }
 
 // How far a map point may reach towards the laser: a surfel's patch or a disc's footprint, never
@@ -134,12 +133,9 @@ struct BlockWalk {
 // offered beyond limit_m: it has none yet, or its hit is not nearer than limit_m.
 bool AnyBeamOpen(const SimulatedScan& sim, double bearing_rad, double half_rad, double limit_m) {
   if (half_rad >= 0.5 * M_PI) return true;
-  bool open = false;
-  ForEachBeamInInterval(sim.layout, bearing_rad - half_rad, 2.0 * half_rad,
-                        [&](std::size_t beam) {
-                          open = open || !sim.IsValid(beam) || !(sim.ranges_m[beam] < limit_m);
-                        });
-  return open;
+  return AnyBeamInInterval(sim.layout, bearing_rad - half_rad, 2.0 * half_rad, [&](std::size_t k) {
+    return !sim.IsValid(k) || !(sim.ranges_m[k] < limit_m);
+  });
 }
 
 // Whether the points of block (ix, iy) may change the scan. They lie in a disc around the block's
@@ -181,7 +177,9 @@ bool AllBeamsClosed(const SimulatedScan& sim, double limit_m, std::size_t& open_
 template <class Visit>
 void ForEachBlockInRing(std::int64_t ox, std::int64_t oy, std::int64_t r,
                         const PointMap::BlockRange& range, Visit visit) {
-  const auto in = [](std::int64_t v, std::int64_t lo, std::int64_t hi) { return lo <= v && v <= hi; };
+  const auto in = [](std::int64_t v, std::int64_t lo, std::int64_t hi) {
+    return lo <= v && v <= hi;
+  };
   if (r == 0) {
     if (in(ox, range.x0, range.x1) && in(oy, range.y0, range.y1)) visit(ox, oy);
     return;
@@ -203,11 +201,10 @@ void WalkBlocks(SimulatedScan& sim, BlockWalk& walk) {
   const PointMap::BlockRange range = walk.map.block_range();
   const Eigen::Vector2d origin = walk.T_world_laser.Translation();
   const std::int64_t ox = PointMap::BlockIndex(origin.x()), oy = PointMap::BlockIndex(origin.y());
-  const double first_ring =
-      std::max({0.0, static_cast<double>(range.x0) - static_cast<double>(ox),
-                static_cast<double>(ox) - static_cast<double>(range.x1),
-                static_cast<double>(range.y0) - static_cast<double>(oy),
-                static_cast<double>(oy) - static_cast<double>(range.y1)});
+  const double first_ring = std::max({0.0, static_cast<double>(range.x0) - static_cast<double>(ox),
+                                      static_cast<double>(ox) - static_cast<double>(range.x1),
+                                      static_cast<double>(range.y0) - static_cast<double>(oy),
+                                      static_cast<double>(oy) - static_cast<double>(range.y1)});
   const double last_ring = std::max({static_cast<double>(range.x1) - static_cast<double>(ox),
                                      static_cast<double>(ox) - static_cast<double>(range.x0),
                                      static_cast<double>(range.y1) - static_cast<double>(oy),
@@ -218,15 +215,14 @@ void WalkBlocks(SimulatedScan& sim, BlockWalk& walk) {
     const double ring_nearest = std::max(0.0, (ring - 1.0) * side - margin) - 1e-9;
     if (ring_nearest >= sim.layout.range_max_m) return;
     if (AllBeamsClosed(sim, ring_nearest - walk.patch_margin_m, walk.open_probe)) return;
-    ForEachBlockInRing(ox, oy, static_cast<std::int64_t>(ring), range,
-                       [&](std::int64_t ix, std::int64_t iy) {
-                         const std::vector<std::uint32_t>* points = walk.map.Block(ix, iy);
-                         if (points == nullptr || !BlockMayShow(sim, walk, ix, iy)) return;
-                         for (const std::uint32_t i : *points)
-                           if (walk.map.alive(i))
-                             OfferPoint(sim, walk.map, walk.T_world_laser, walk.directions,
-                                        walk.options, i);
-                       });
+    ForEachBlockInRing(
+        ox, oy, static_cast<std::int64_t>(ring), range, [&](std::int64_t ix, std::int64_t iy) {
+          const std::vector<std::uint32_t>* points = walk.map.Block(ix, iy);
+          if (points == nullptr || !BlockMayShow(sim, walk, ix, iy)) return;
+          for (const std::uint32_t i : *points)
+            if (walk.map.alive(i))
+              OfferPoint(sim, walk.map, walk.T_world_laser, walk.directions, walk.options, i);
+        });
   }
 }
 

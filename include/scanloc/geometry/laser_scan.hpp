@@ -53,7 +53,8 @@ ScanLayout MakeLayout(std::size_t beam_count, double fov_rad, double range_max_m
 // [from, from + span], span in [0, π]; bearings are compared modulo 2π so an interval across the
 // ±π seam is handled.
 template <class Visit>
-void ForEachBeamInInterval(const ScanLayout& layout, double from_rad, double span_rad, Visit visit) {
+void ForEachBeamInInterval(const ScanLayout& layout, double from_rad, double span_rad,
+                           Visit visit) {
   const double inc = layout.angle_increment_rad;
   const double start = NormalizeAngle(from_rad);
   for (const double shift : {-2.0 * M_PI, 0.0, 2.0 * M_PI}) {
@@ -64,6 +65,23 @@ void ForEachBeamInInterval(const ScanLayout& layout, double from_rad, double spa
         std::min(static_cast<double>(layout.beam_count) - 1.0, std::floor(hi / inc + 1e-9));
     for (double k = first; k <= last; k += 1.0) visit(static_cast<std::size_t>(k));
   }
+}
+
+// True when test(beam) holds for some beam of `layout` in [from, from + span] (as
+// ForEachBeamInInterval); stops at the first.
+template <class Test>
+bool AnyBeamInInterval(const ScanLayout& layout, double from_rad, double span_rad, Test test) {
+  const double inc = layout.angle_increment_rad;
+  const double start = NormalizeAngle(from_rad);
+  for (const double shift : {-2.0 * M_PI, 0.0, 2.0 * M_PI}) {
+    const double lo = start + shift - layout.angle_min_rad;
+    const double first = std::max(0.0, std::ceil(lo / inc - 1e-9));
+    const double last = std::min(static_cast<double>(layout.beam_count) - 1.0,
+                                 std::floor((lo + span_rad) / inc + 1e-9));
+    for (double k = first; k <= last; k += 1.0)
+      if (test(static_cast<std::size_t>(k))) return true;
+  }
+  return false;
 }
 
 // The laser's fixed mounting on the robot: T_robot_laser. Postures are reported in robot
