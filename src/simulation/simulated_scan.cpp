@@ -138,22 +138,27 @@ bool AnyBeamOpen(const SimulatedScan& sim, double bearing_rad, double half_rad, 
   });
 }
 
-// Whether the points of block (ix, iy) may change the scan. They lie in a disc around the block's
-// centre; each is farther than `nearest`, so it offers no range below nearest − patch margin,
-// and only to beams within its footprint (at most max(½ step, patch margin / nearest)) of a
-// bearing inside the disc's angular span. When no beam there is open at that range, none of them
+// Whether the points of block (ix, iy) may change the scan. They lie in the block's square
+// widened by the margin, within a disc around its centre; each is farther than the square's
+// `nearest` point, so it offers no range below nearest − patch margin, and only to beams within
+// its footprint (at most max(½ step, patch margin / nearest)) of a bearing inside the disc's
+// angular span. When no beam there is open at that range, none of them
 // can change the scan.
 bool BlockMayShow(const SimulatedScan& sim, const BlockWalk& walk, std::int64_t ix,
                   std::int64_t iy) {
   const double side = PointMap::kBlockSideM;
   const Eigen::Vector2d centre((static_cast<double>(ix) + 0.5) * side,
                                (static_cast<double>(iy) + 0.5) * side);
-  const double radius = side * M_SQRT1_2 + walk.map.block_margin_m();
+  const double margin = walk.map.block_margin_m();
+  const double radius = side * M_SQRT1_2 + margin;
   const Eigen::Vector2d delta = centre - walk.T_world_laser.Translation();
   const double centre_distance = delta.norm();
-  const double nearest = centre_distance - radius - 1e-9;
+  // The distance to the square widened by the margin: nearer than any of its points.
+  const Eigen::Vector2d gap = (delta.cwiseAbs().array() - (0.5 * side + margin)).max(0.0);
+  const double nearest = gap.norm() - 1e-9;
   if (nearest >= sim.layout.range_max_m) return false;
-  if (nearest <= walk.patch_margin_m) return true;  // beside the laser: any beam may see it
+  // Beside the laser any beam may see it.
+  if (nearest <= walk.patch_margin_m || centre_distance <= radius) return true;
   const double half = std::asin(radius / centre_distance) +
                       std::max(0.5 * sim.layout.angle_increment_rad, walk.patch_margin_m / nearest);
   const double bearing = std::atan2(delta.y(), delta.x()) - walk.T_world_laser.yaw_rad;
