@@ -1,7 +1,8 @@
 #pragma once
 // The point map: world points accumulated from localised scans (3.6) or sampled from a line map,
-// with a k-d tree that grows incrementally and a de-duplication grid so that the map grows with the
-// explored area rather than with the number of scans.
+// with a k-d tree that grows incrementally, a de-duplication grid so that the map grows with the
+// explored area rather than with the number of scans, and coarse blocks for searches that cull
+// whole regions (the simulated scan, free-space carving).
 
 #include <Eigen/Core>
 #include <cstdint>

@@ -43,7 +43,9 @@ struct PointSimulationOptions {
 // (3.1)–(3.5) Ray–segment intersection for every beam, nearest kept (occlusion).
 SimulatedScan SimulateFromLines(const LineMap& map, const ScanLayout& layout,
                                 const Pose2D& T_world_laser);
-// (3.7) Map points within range_max of the laser, binned by bearing, nearest kept.
+// (3.7) Map points within range_max of the laser, binned by bearing, nearest kept (of equal
+// ranges, the lowest point index). The map's blocks are walked front to back, skipping those the
+// beams cannot see past nearer hits: the cost follows what the scan sees, not the map's size.
 SimulatedScan SimulateFromPoints(const PointMap& map, const ScanLayout& layout,
                                  const Pose2D& T_world_laser,
                                  const PointSimulationOptions& options = {});
