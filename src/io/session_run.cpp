@@ -24,6 +24,14 @@ double PeakResidentMegabytes() {
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux reports kilobytes
 }
 
+// User + system CPU seconds of the whole process, every thread's.
+double ProcessCpuSeconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const auto seconds = [](const timeval& t) { return t.tv_sec + 1e-6 * t.tv_usec; };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
 void PrintProgress(const SessionRun& run, const IterationSource& source, double elapsed_s,
                    std::size_t map_points) {
   const double progress = source.Progress();
@@ -153,6 +161,7 @@ SessionRun RunSession(IterationSource& source, const SessionFactory& make_sessio
                       const SessionRunOptions& options) {
   SessionRun result;
   const auto start = Clock::now();
+  const double cpu_start_s = ProcessCpuSeconds();
   auto last_progress = start;
   Iteration iteration;
   auto wanted = [&] {
@@ -189,6 +198,7 @@ SessionRun RunSession(IterationSource& source, const SessionFactory& make_sessio
   RequireReplayDone(result, run, stopped());
   result.counts.interrupted = stopped();
   result.counts.wall_s = SecondsSince(start);
+  result.counts.cpu_s = ProcessCpuSeconds() - cpu_start_s;
   return result;
 }
 
@@ -220,6 +230,8 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
       {"first_timestamp_s", c.first_timestamp_s},
       {"scans_per_s", wall_s > 0 ? static_cast<double>(c.iterations) / wall_s : 0.0},
       {"times_real_time", wall_s > 0 ? c.span_s() / wall_s : 0.0},
+      {"cpu_time_s", c.cpu_s},
+      {"times_real_time_on_cpu", c.cpu_s > 0 ? c.span_s() / c.cpu_s : 0.0},
       {"peak_resident_mb", PeakResidentMegabytes()},
       {"odometry_reversed_increments", source.repaired_odometry_increments()},
       {"timestamps_not_increasing", source.timestamp_warnings()},

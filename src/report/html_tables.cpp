@@ -102,6 +102,8 @@ std::string SummaryTable(const json& summary, const std::vector<IterationRow>& r
                                           {"wall_time_s", "wall time [s]"},
                                           {"scans_per_s", "scans per second"},
                                           {"times_real_time", "× real time"},
+                                          {"cpu_time_s", "CPU time, user + system [s]"},
+                                          {"times_real_time_on_cpu", "× real time on CPU"},
                                           {"peak_resident_mb", "peak memory [MB]"},
                                           {"lost_stretches", "times lost"},
                                           {"wide_searches", "wide searches"},

@@ -55,6 +55,7 @@ struct SessionCounts {
   std::size_t closures_tried = 0, closures_accepted = 0, map_renders = 0;
   double first_timestamp_s = 0.0, min_timestamp_s = 0.0, max_timestamp_s = 0.0;
   double wall_s = 0.0;
+  double cpu_s = 0.0;  // user + system, every thread, over the same stretch as wall_s
   // Iterations replayed from the records of an interrupted run (--resume), not localised again.
   std::size_t replayed = 0;
   bool interrupted = false;  // stopped by options.stop
