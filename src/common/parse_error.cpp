@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 
@@ -22,6 +23,12 @@ std::vector<std::string> SplitFields(const std::string& line, std::size_t max_fi
 
 double ParseDouble(const std::string& field, const std::string& file, std::size_t line,
                    const std::string& what) {
+  // std::from_chars first: correctly rounded like strtod, and several times faster (a log's
+  // ranges are most of its parsing). Whatever it does not take whole (a sign '+', hexadecimal,
+  // an out-of-range value) goes to strtod, whose verdict stands.
+  double fast = 0.0;
+  const auto [stop, error] = std::from_chars(field.data(), field.data() + field.size(), fast);
+  if (error == std::errc() && stop == field.data() + field.size()) return fast;
   const char* begin = field.c_str();
   char* end = nullptr;
   errno = 0;

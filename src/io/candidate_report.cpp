@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <utility>
 #include "scanloc/io/record_keys.hpp"
 
 namespace scanloc {
@@ -134,8 +135,10 @@ nlohmann::json RefinedToJson(const LocalisationResult& result) {
                           {keys::kReason, ToString(c.verdict)},
                           {keys::kRank, c.rank}});
   }
-  return {{keys::kCandidates, candidates},
-          {keys::kBest, BestLabel(result.refined, result.best_refined)}};
+  nlohmann::json out = nlohmann::json::object();
+  out[keys::kCandidates] = std::move(candidates);  // moved: an initializer list would copy them
+  out[keys::kBest] = BestLabel(result.refined, result.best_refined);
+  return out;
 }
 
 nlohmann::json EvaluatedToJson(const LocalisationResult& result) {
@@ -150,9 +153,11 @@ nlohmann::json EvaluatedToJson(const LocalisationResult& result) {
                           {keys::kValid, c.verdict == Verdict::kValid},
                           {keys::kReason, ToString(c.verdict)},
                           {keys::kRank, c.rank}});
-  return {{keys::kCandidates, candidates},
-          {keys::kBest, BestLabel(result.evaluated, result.best_evaluated)},
-          {keys::kProblems, result.problems}};
+  nlohmann::json out = nlohmann::json::object();
+  out[keys::kCandidates] = std::move(candidates);  // moved: an initializer list would copy them
+  out[keys::kBest] = BestLabel(result.evaluated, result.best_evaluated);
+  out[keys::kProblems] = result.problems;
+  return out;
 }
 
 }  // namespace scanloc

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "scanloc/common/atomic_file.hpp"
 #include "scanloc/common/parse_error.hpp"
@@ -148,7 +149,9 @@ nlohmann::json ToJson(const IterationRecord& r) {
   }
   const RankedCandidate* kept = r.Kept();
   if (localisation && !localisation->evaluated.empty()) {
-    out["candidates"] = EvaluatedToJson(*localisation)["candidates"];
+    // Moved, not copied: the candidates are the bulk of a record.
+    nlohmann::json evaluated = EvaluatedToJson(*localisation);
+    out["candidates"] = std::move(evaluated["candidates"]);
     out["chosen"] = kept ? nlohmann::json(kept->candidate.label) : nlohmann::json(nullptr);
     out["problems"] = localisation->problems;
     out[keys::kMaxExpectValueM] = r.max_expect_value_m;

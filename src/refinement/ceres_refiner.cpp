@@ -10,10 +10,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include "beam_residuals.hpp"
+#include "point_line_fit.hpp"
 #include "scanloc/common/parallel_for.hpp"
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/maps/point_map.hpp"
-#include "beam_residuals.hpp"
 
 namespace scanloc {
 namespace {
@@ -36,45 +37,14 @@ ceres::LossFunction* MakeLoss(const LikelihoodDistanceOptions& distance) {
   return nullptr;
 }
 
-// A line through the k nearest map points of the hit, if they are close and collinear enough.
-bool FitPointLine(const PointMap& points, const Eigen::Vector2d& hit,
-                  const CeresRefinerOptions& options, SurfaceLine& line) {
-  // The k nearest within the radius: one radius search, then the k nearest of what it found (the
-  // same set as the k nearest filtered by the radius, at the cost of one search instead of two).
-  thread_local std::vector<std::pair<std::uint32_t, double>> neighbours;  // reused: no allocation
-  points.RadiusSearch(hit, options.line_fit_radius_m, neighbours);
-  const auto k = std::min(neighbours.size(), static_cast<std::size_t>(options.line_fit_neighbours));
-  if (k < 2) return false;
-  // Nearest first, ties by index: the fit's sums then do not depend on the order the search
-  // found the points in.
-  const auto nearer = [](const auto& a, const auto& b) {
-    return a.second < b.second || (a.second == b.second && a.first < b.first);
-  };
-  std::nth_element(neighbours.begin(), neighbours.begin() + (k - 1), neighbours.end(), nearer);
-  neighbours.resize(k);
-  std::sort(neighbours.begin(), neighbours.end(), nearer);
-  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-  for (const auto& [index, squared_distance] : neighbours) centroid += points.point(index);
-  centroid /= static_cast<double>(k);
-  Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
-  for (const auto& [index, squared_distance] : neighbours) {
-    const Eigen::Vector2d d = points.point(index) - centroid;
-    spread += d * d.transpose();
-  }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(spread);
-  const double largest = eigen.eigenvalues()(1);
-  if (!(largest > 0.0)) return false;
-  if (std::sqrt(std::max(0.0, eigen.eigenvalues()(0)) / largest) > options.max_line_thickness)
-    return false;
-  line.normal = eigen.eigenvectors().col(0).normalized();
-  line.offset = line.normal.dot(centroid);
-  return true;
+PointLineFitOptions LineFitOptions(const CeresRefinerOptions& options) {
+  return {options.line_fit_radius_m, options.line_fit_neighbours, options.max_line_thickness};
 }
 
 // `sim_valid`: the simulated scan exists and beam has a hit there.
 bool SurfaceLineOfBeam(const MapView& map, const SimulatedScan& sim, std::size_t beam,
                        bool sim_valid, const Eigen::Vector2d& hit, const Eigen::Vector2d& end_point,
-                       const CeresRefinerOptions& options, SurfaceLine& line) {
+                       const CeresRefinerOptions& options, BeamLineFits& fits, SurfaceLine& line) {
   if (sim_valid && sim.hit_source[beam] == HitSource::kSegment) {
     const Segment& s = map.lines->segments[sim.hit_index[beam]];
     const Eigen::Vector2d d = s.b - s.a;
@@ -85,8 +55,8 @@ bool SurfaceLineOfBeam(const MapView& map, const SimulatedScan& sim, std::size_t
   }
   if (map.points == nullptr || map.points->empty()) return false;
   if (options.point_association == PointAssociation::kNearestEndpoint)
-    return FitPointLine(*map.points, end_point, options, line);
-  return sim_valid && FitPointLine(*map.points, hit, options, line);
+    return fits.Fit(*map.points, end_point, LineFitOptions(options), line);
+  return sim_valid && fits.Fit(*map.points, hit, LineFitOptions(options), line);
 }
 
 // A Ceres context shared by every problem this thread builds: without one, each problem
@@ -106,7 +76,8 @@ struct BuiltProblem {
 
 BuiltProblem BuildProblem(const MapView& map, const LaserScan& scan, const Pose2D& pose,
                           const SimulatedScan& sim, const ScoringOptions& scoring,
-                          const CeresRefinerOptions& options, double* parameters) {
+                          const CeresRefinerOptions& options, std::vector<BeamLineFits>& fits,
+                          double* parameters) {
   BuiltProblem built;
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -141,7 +112,8 @@ BuiltProblem BuildProblem(const MapView& map, const LaserScan& scan, const Pose2
           const Eigen::Vector2d hit =
               pose.Translation() + (sim_valid ? sim.ranges_m[k] : scan.ranges_m[k]) * u;
           SurfaceLine& line = lines[k];
-          if (!SurfaceLineOfBeam(map, sim, k, sim_valid, hit, end_point, options, line)) continue;
+          if (!SurfaceLineOfBeam(map, sim, k, sim_valid, hit, end_point, options, fits[k], line))
+            continue;
           if (std::abs(line.normal.dot(end_point) - line.offset) > max_residual) continue;
           const double cos_incidence = std::abs(line.normal.dot(u));
           // Beams that slide along their surface carry no information (and a plain range residual
@@ -288,6 +260,11 @@ RefinementResult RefineCeres(const MapView& map, const LaserScan& scan,
   // With nearest-end-point pairing on a point-only map, correspondences need no simulated scan:
   // the scan is simulated only to score the postures before and after.
   SimulatedScan simulated = score.simulated;
+  // Each beam's line fits over the outer iterations (and the final problem), exactly as fitted
+  // afresh; kept per thread so that their buffers are reused from one refinement to the next.
+  thread_local std::vector<BeamLineFits> fits;
+  fits.resize(scan.size());
+  for (BeamLineFits& beam : fits) beam.Reset();
   BuiltProblem built;
   // Outlives the loop: the last problem is evaluated at the solution for the uncertainty.
   double parameters[3] = {pose.x_m, pose.y_m, pose.yaw_rad};
@@ -297,7 +274,7 @@ RefinementResult RefineCeres(const MapView& map, const LaserScan& scan,
     parameters[0] = pose.x_m;
     parameters[1] = pose.y_m;
     parameters[2] = pose.yaw_rad;
-    built = BuildProblem(map, scan, pose, simulated, scoring, options, parameters);
+    built = BuildProblem(map, scan, pose, simulated, scoring, options, fits, parameters);
     result.iterations = outer + 1;
     if (built.residual_count < 3) break;
     ceres::Solver::Options solver_options;
@@ -323,7 +300,7 @@ RefinementResult RefineCeres(const MapView& map, const LaserScan& scan,
   // The uncertainty of the final posture, from the last problem (the correspondences the posture
   // was found with) evaluated at the solution.
   if (!built.problem) {
-    built = BuildProblem(map, scan, pose, score.simulated, scoring, options, parameters);
+    built = BuildProblem(map, scan, pose, score.simulated, scoring, options, fits, parameters);
   } else {
     parameters[0] = pose.x_m;
     parameters[1] = pose.y_m;
