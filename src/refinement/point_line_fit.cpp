@@ -72,17 +72,21 @@ bool BeamLineFits::Fit(const PointMap& points, const Eigen::Vector2d& query,
   // The pool's radius has a hair of slack over the margin, so that rounding in the distances
   // cannot drop a point the triangle inequality promises.
   if (!has_pool_ || (query - pool_centre_).norm() > kPoolMarginM) {
-    points.RadiusSearch(query, options.radius_m + kPoolMarginM + 1e-6, pool_);
+    thread_local Neighbours found;
+    points.RadiusSearch(query, options.radius_m + kPoolMarginM + 1e-6, found);
+    pool_.clear();
+    for (const auto& [index, unused] : found) pool_.push_back({index, points.point(index)});
     pool_centre_ = query;
     has_pool_ = true;
   }
-  thread_local Neighbours nearest;
+  // A member, not thread_local: in a shared library every access to one is a call.
+  Neighbours& nearest = nearest_;
   nearest.clear();
   const auto k = static_cast<std::size_t>(options.neighbours);
   const double radius2 = options.radius_m * options.radius_m;
-  for (const auto& [index, unused] : pool_) {
-    const double d2 = (points.point(index) - query).squaredNorm();  // as PointMap::RadiusSearch
-    if (d2 < radius2) OfferNearest(nearest, k, index, d2);
+  for (const PoolPoint& pooled : pool_) {
+    const double d2 = (pooled.point - query).squaredNorm();  // as PointMap::RadiusSearch
+    if (d2 < radius2) OfferNearest(nearest, k, pooled.index, d2);
   }
   if (nearest.size() < 2) return false;
   const bool same = has_fit_ && fitted_.size() == nearest.size() &&

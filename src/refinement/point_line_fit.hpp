@@ -46,7 +46,12 @@ class BeamLineFits {
  private:
   bool has_pool_ = false;
   Eigen::Vector2d pool_centre_ = Eigen::Vector2d::Zero();
-  std::vector<std::pair<std::uint32_t, double>> pool_;
+  struct PoolPoint {
+    std::uint32_t index;
+    Eigen::Vector2d point;
+  };
+  std::vector<PoolPoint> pool_;  // with their coordinates: the filter reads them in a row
+  std::vector<std::pair<std::uint32_t, double>> nearest_;  // the current query's k nearest
   bool has_fit_ = false;
   std::vector<std::uint32_t> fitted_;  // the k nearest of the last fit, nearest first
   bool fitted_ok_ = false;
