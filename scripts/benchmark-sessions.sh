@@ -33,7 +33,7 @@ def per_scan_ms(log):
     return sum(totals[:tenth]) / tenth, sum(totals[-tenth:]) / tenth
 def path_km(folder):
     # Length of the trajectory's path (TUM: t x y z ...), km.
-    rows = [line.split() for line in open(f"{folder}/trajectory.tum") if line.strip()]
+    rows = [line.split() for line in open(f"{folder}/trajectory.tum") if line.strip() and line[0] != "#"]
     xy = [(float(r[1]), float(r[2])) for r in rows]
     return sum(((b[0] - a[0]) ** 2 + (b[1] - a[1]) ** 2) ** 0.5 for a, b in zip(xy, xy[1:])) / 1e3
 print("| log | translation [m] | max [m] | rotation [deg] | max [deg] | localised / validated / scans "
