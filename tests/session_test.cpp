@@ -189,6 +189,58 @@ TEST(Session, AnUnvalidatedPostureIsTheRefinedBestGuessAndDoesNotExtendTheMap) {
   EXPECT_EQ(session.point_map().live_size(), points);
 }
 
+// unconfirmed_takes_prediction (off by default): rule 2 can never pass. With perfect odometry
+// the localised scans are unconfirmed and keep the prediction, which is the truth; at scan 12 the
+// odometry jumps 0.4 m sideways (a robot carried): the prediction's cost is then many times the
+// refinement's, the data disproves it, and the refinement, within 2 cm of the truth, is kept.
+struct UnconfirmedRun {
+  std::vector<IterationRecord> records;
+  std::vector<Pose2D> truth;
+};
+UnconfirmedRun RunUnconfirmed() {
+  Sequence sequence = LoopAroundTheRoom(9);
+  const Pose2D jump{0.0, 0.4, 0.0};
+  for (std::size_t i = 0; i < sequence.iterations.size(); ++i)  // perfect, in the map's frame
+    sequence.iterations[i].odometry = sequence.truth[i] * (i >= 12 ? jump : Pose2D{});
+  SessionOptions options;
+  options.initial_pose = sequence.truth.front();
+  options.unconfirmed_takes_prediction = true;
+  SessionConfig config{options, {}};
+  config.localisation.validation.max_expect_value_m = 1e-4;  // rule 2 can never pass
+  Session session(config, {}, Classroom(), PointMap{});
+  UnconfirmedRun run{{}, sequence.truth};
+  for (std::size_t i = 0; i < 13; ++i)
+    run.records.push_back(session.Process(sequence.iterations[i]));
+  return run;
+}
+
+TEST(Session, AnUnconfirmedScanKeepsThePredictionUnlessTheDataDisprovesIt) {
+  const UnconfirmedRun run = RunUnconfirmed();
+  int localised = 0;
+  for (std::size_t i = 1; i < 12; ++i) {
+    const IterationRecord& r = run.records[i];
+    if (r.skipped) continue;
+    ++localised;
+    EXPECT_FALSE(r.validated);
+    ASSERT_NE(r.Kept(), nullptr);
+    EXPECT_EQ(r.T_world_robot.x_m, r.prediction.x_m) << "scan " << i;
+    EXPECT_EQ(r.T_world_robot.y_m, r.prediction.y_m) << "scan " << i;
+    EXPECT_EQ(r.T_world_robot.yaw_rad, r.prediction.yaw_rad) << "scan " << i;
+    const Pose2D error = Between(run.truth[i], r.T_world_robot);
+    EXPECT_LT(std::hypot(error.x_m, error.y_m), 1e-9);
+  }
+  EXPECT_GE(localised, 5);
+  const IterationRecord& jumped = run.records[12];
+  ASSERT_FALSE(jumped.skipped);
+  EXPECT_FALSE(jumped.validated);
+  ASSERT_NE(jumped.Kept(), nullptr);
+  const double ratio = SessionOptions{}.prediction_disproved_cost_ratio;
+  EXPECT_GT(jumped.localisation->evaluated.front().cost, ratio * jumped.Kept()->cost);
+  EXPECT_EQ(jumped.T_world_robot.y_m, jumped.Kept()->T_world_robot.y_m);
+  const Pose2D error = Between(run.truth[12], jumped.T_world_robot);
+  EXPECT_LT(std::hypot(error.x_m, error.y_m), 0.02);
+}
+
 // Scan 20 of the loop sees a crowd: 85 % of its beams end 0.4 m away, on nothing the map has.
 // Rule 1 fails (too little of the scan on the map); the refinement, anchored by the few beams
 // left, says nothing the odometry could be judged by, so the posture stays the prediction; with
