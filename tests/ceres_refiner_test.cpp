@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 #include "scanloc/maps/line_map.hpp"
@@ -131,6 +132,61 @@ TEST(RefineCeres, LongCorridorIsFlaggedDegenerateAlongItsAxis) {
   EXPECT_NEAR(r.T_world_laser.yaw_rad, 0.05, 0.005);
 }
 
+// The corridor of the test above leaves its axis to chance; a prior (the odometry's prediction)
+// holds the posture there, while across the corridor the beams outweigh the prior's 10 cm error.
+TEST(RefineCeres, APriorHoldsTheCorridorAxisTheBeamsLeaveFree) {
+  LineMap corridor;
+  corridor.segments = {{{-100.0, -1.0}, {100.0, -1.0}}, {{-100.0, 1.0}, {100.0, 1.0}}};
+  const Pose2D truth{0.0, 0.2, 0.05};
+  const LaserScan scan = Observe(corridor, truth, 0.01, 9);
+  CeresRefinerOptions options;
+  options.prior = PosturePrior{{0.0, 0.3, 0.0}, {1.0 / 0.05, 1.0 / 0.05, 0.0}};
+  const RefinementResult r =
+      RefineCeres(MapView{&corridor, nullptr}, scan, {0.3, 0.25, 0.0}, ScoringOptions{}, options);
+  EXPECT_NEAR(r.T_world_laser.x_m, 0.0, 0.005) << Describe(r);
+  EXPECT_NEAR(r.T_world_laser.y_m, 0.2, 0.01) << Describe(r);
+  EXPECT_NEAR(r.T_world_laser.yaw_rad, 0.05, 0.005) << Describe(r);
+  // The uncertainty is the beams' alone: the axis is still reported free.
+  EXPECT_TRUE(r.degenerate);
+  EXPECT_NE(r.degeneracy.find("translation along (1.00, 0.00)"), std::string::npos) << r.degeneracy;
+}
+
+// Where the scan pins the posture, a prior 0.2 m off (σ 5 cm) moves it by millimetres.
+TEST(RefineCeres, APriorBarelyMovesAPostureTheScanPins) {
+  const LineMap map = Classroom();
+  const Pose2D truth{2.2, 3.1, 0.4};
+  const LaserScan scan = Observe(map, truth, 0.0, 1);
+  CeresRefinerOptions options;
+  options.prior = PosturePrior{truth * Pose2D{0.2, -0.2, 0.0}, {20.0, 20.0, 0.0}};
+  for (const Pose2D& offset : Offsets(11, 4)) {
+    const RefinementResult r =
+        RefineCeres(MapView{&map, nullptr}, scan, truth * offset, ScoringOptions{}, options);
+    const Pose2D error = Between(truth, r.T_world_laser);
+    EXPECT_LT(std::hypot(error.x_m, error.y_m), 0.005) << Describe(r);
+    EXPECT_LT(std::abs(error.yaw_rad), 0.002) << Describe(r);
+  }
+}
+
+// A prior of zero weight adds nothing: the posture of no prior, to the last bits that matter.
+TEST(RefineCeres, APriorOfZeroWeightGivesThePostureOfNone) {
+  const LineMap map = Classroom();
+  const Pose2D truth{2.2, 3.1, 0.4};
+  const LaserScan scan = Observe(map, truth, 0.02, 5);
+  CeresRefinerOptions zero;
+  zero.prior = PosturePrior{truth * Pose2D{0.3, 0.3, 0.1}, Eigen::Vector3d::Zero()};
+  for (const Pose2D& offset : Offsets(21, 4)) {
+    const Pose2D start = truth * offset;
+    const RefinementResult none =
+        RefineCeres(MapView{&map, nullptr}, scan, start, ScoringOptions{});
+    const RefinementResult with =
+        RefineCeres(MapView{&map, nullptr}, scan, start, ScoringOptions{}, zero);
+    EXPECT_NEAR(with.T_world_laser.x_m, none.T_world_laser.x_m, 1e-12);
+    EXPECT_NEAR(with.T_world_laser.y_m, none.T_world_laser.y_m, 1e-12);
+    EXPECT_NEAR(with.T_world_laser.yaw_rad, none.T_world_laser.yaw_rad, 1e-12);
+    EXPECT_EQ(with.iterations, none.iterations);
+  }
+}
+
 TEST(RefineCeres, MirrorCandidateStaysAtTheMirrorAndScoresWorse) {
   const LineMap map = Classroom();
   const Pose2D truth{1.126, 3.112, 0.0463};
@@ -179,6 +235,16 @@ TEST(RefineCeres, WithoutInitialScoringOnAPointMapGivesTheSamePosture) {
   EXPECT_GT(b.test_before.valid_pairs, 0);
   EXPECT_DOUBLE_EQ(a.T_world_laser.x_m, b.T_world_laser.x_m);
   EXPECT_DOUBLE_EQ(a.T_world_laser.yaw_rad, b.T_world_laser.yaw_rad);
+}
+
+TEST(CeresRefinerOptions, APriorWithANegativeOrNonFiniteWeightIsRefused) {
+  CeresRefinerOptions options;
+  options.prior = PosturePrior{{}, {1.0, -1.0, 0.0}};
+  EXPECT_THROW(options.Validate(), std::invalid_argument);
+  options.prior->inverse_sigma = {1.0, std::numeric_limits<double>::infinity(), 0.0};
+  EXPECT_THROW(options.Validate(), std::invalid_argument);
+  options.prior->inverse_sigma = {1.0, 1.0, 0.0};
+  EXPECT_NO_THROW(options.Validate());
 }
 
 TEST(CeresRefinerOptions, AbsurdValuesAreRefused) {

@@ -241,6 +241,32 @@ TEST(Session, AnUnconfirmedScanKeepsThePredictionUnlessTheDataDisprovesIt) {
   EXPECT_LT(std::hypot(error.x_m, error.y_m), 0.02);
 }
 
+// Scan 12 of the loop comes after a 0.4 m odometry jump, in a room the scan pins. The session's
+// motion prior reaches the refinement: with it the posture is pulled a little towards the
+// prediction, and the beams still put it within 3 cm of the truth.
+Pose2D PostureAfterAJump(bool motion_prior) {
+  Sequence sequence = LoopAroundTheRoom(9);
+  const Pose2D jump{0.0, 0.4, 0.0};
+  for (std::size_t i = 0; i < sequence.iterations.size(); ++i)
+    sequence.iterations[i].odometry = sequence.truth[i] * (i >= 12 ? jump : Pose2D{});
+  SessionOptions options;
+  options.initial_pose = sequence.truth.front();
+  options.motion_prior.enabled = motion_prior;
+  Session session(SessionConfig{options, {}}, {}, Classroom(), PointMap{});
+  IterationRecord record;
+  for (std::size_t i = 0; i < 13; ++i) record = session.Process(sequence.iterations[i]);
+  EXPECT_FALSE(record.skipped);
+  return Between(sequence.truth[12], record.T_world_robot);
+}
+
+TEST(Session, TheMotionPriorPullsTowardsThePredictionWhereTheScanOutweighsIt) {
+  const Pose2D without = PostureAfterAJump(false), with = PostureAfterAJump(true);
+  EXPECT_LT(std::hypot(without.x_m, without.y_m), 0.02);
+  EXPECT_LT(std::hypot(with.x_m, with.y_m), 0.03);
+  // The jump was +0.4 m along the robot's y: the prior pulls that way (by 7.8 mm when written).
+  EXPECT_GT(with.y_m - without.y_m, 0.003) << "with " << with.y_m << ", without " << without.y_m;
+}
+
 // Scan 20 of the loop sees a crowd: 85 % of its beams end 0.4 m away, on nothing the map has.
 // Rule 1 fails (too little of the scan on the map); the refinement, anchored by the few beams
 // left, says nothing the odometry could be judged by, so the posture stays the prediction; with

@@ -153,6 +153,14 @@ void VisitSession(C& c, V& v) {
     "... unless the prediction's cost (3.11) exceeds this many times the refinement's");
   v("session.low_overlap_takes_prediction", s.low_overlap_takes_prediction,
     "a scan whose refinement fails rule 1 (too little of it on the map) keeps the prediction");
+  v("session.motion_prior", s.motion_prior.enabled,
+    "the odometry's prediction is a prior on the refinement's position (not its heading) ...");
+  v("session.motion_prior_floor_m", s.motion_prior.floor_m, Bounds{1e-6, 100},
+    "... σ = this + a growth per metre the odometry moved since the last localised scan, m ...");
+  v("session.motion_prior_along_per_m", s.motion_prior.along_per_m, Bounds{0, 100},
+    "... growth along the motion, m per m ...");
+  v("session.motion_prior_across_per_m", s.motion_prior.across_per_m, Bounds{0, 100},
+    "... and across it, m per m");
   v("session.learned_max_expect_value", s.learned_max_expect_value,
     "rule 2's E_max is the laser signature's bound (validation's is its prior); false: recorded "
     "only");

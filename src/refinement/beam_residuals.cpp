@@ -78,4 +78,24 @@ bool BeamsResidual::Evaluate(double const* const* parameters, double* residuals,
   return true;
 }
 
+PriorResidual::PriorResidual(const double mean[3], const Eigen::Vector3d& weights)
+    : mean_{mean[0], mean[1], mean[2]}, weights_(weights) {}
+
+bool PriorResidual::Evaluate(double const* const* parameters, double* residuals,
+                             double** jacobians) const {
+  const double* pose = parameters[0];
+  const double c = std::cos(mean_[2]), s = std::sin(mean_[2]);
+  const double dx = pose[0] - mean_[0], dy = pose[1] - mean_[1];
+  residuals[0] = weights_(0) * (c * dx + s * dy);
+  residuals[1] = weights_(1) * (-s * dx + c * dy);
+  residuals[2] = weights_(2) * std::remainder(pose[2] - mean_[2], 2.0 * M_PI);
+  if (jacobians != nullptr && jacobians[0] != nullptr) {
+    const double rows[9] = {
+        weights_(0) * c, weights_(0) * s, 0.0, -weights_(1) * s, weights_(1) * c, 0.0, 0.0, 0.0,
+        weights_(2)};
+    std::copy(rows, rows + 9, jacobians[0]);
+  }
+  return true;
+}
+
 }  // namespace scanloc

@@ -6,6 +6,7 @@
 
 #include <ceres/cost_function.h>
 #include <ceres/loss_function.h>
+#include <ceres/sized_cost_function.h>
 
 #include <Eigen/Core>
 #include <memory>
@@ -64,6 +65,21 @@ class BeamsResidual : public ceres::CostFunction {
   std::vector<BeamTerm> beams_;
   bool cosine_;
   std::unique_ptr<ceres::LossFunction> kernel_;
+};
+
+// A prior on the laser posture: the difference p − mean in the mean's frame (along, across,
+// heading), each component times its weight. Its cost ½Σ(wᵢdᵢ)² adds to the beams'; a zero weight
+// leaves that component to the beams alone.
+class PriorResidual : public ceres::SizedCostFunction<3, 3> {
+ public:
+  PriorResidual(const double mean[3], const Eigen::Vector3d& weights);
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override;
+
+ private:
+  double mean_[3];
+  Eigen::Vector3d weights_;
 };
 
 }  // namespace scanloc

@@ -69,6 +69,8 @@ ceres::Context* SharedContext() {
 struct BuiltProblem {
   // Owned here rather than by the problem; declared first, destroyed last.
   std::unique_ptr<BeamsResidual> residual;
+  std::unique_ptr<PriorResidual> prior;
+  ceres::ResidualBlockId beams_block = nullptr;
   std::unique_ptr<ceres::Problem> problem;
   int residual_count = 0;
   std::vector<double> ranges_used_m;
@@ -134,7 +136,14 @@ BuiltProblem BuildProblem(const MapView& map, const LaserScan& scan, const Pose2
   if (beams.empty()) return built;
   built.residual = std::make_unique<BeamsResidual>(
       std::move(beams), cosine, std::unique_ptr<ceres::LossFunction>(MakeLoss(scoring.distance)));
-  built.problem->AddResidualBlock(built.residual.get(), nullptr, parameters);
+  built.beams_block = built.problem->AddResidualBlock(built.residual.get(), nullptr, parameters);
+  if (options.prior) {
+    const Pose2D& mean = options.prior->mean;
+    const double mean_array[3] = {mean.x_m, mean.y_m, mean.yaw_rad};
+    built.prior = std::make_unique<PriorResidual>(
+        mean_array, scoring.distance.scale_m * options.prior->inverse_sigma);
+    built.problem->AddResidualBlock(built.prior.get(), nullptr, parameters);
+  }
   return built;
 }
 
@@ -150,6 +159,7 @@ void EstimateUncertainty(BuiltProblem& built, const CeresRefinerOptions& options
   double cost = 0.0;
   ceres::CRSMatrix jacobian;
   ceres::Problem::EvaluateOptions evaluate;
+  evaluate.residual_blocks = {built.beams_block};  // the scan's evidence, without the prior
   built.problem->Evaluate(evaluate, &cost, nullptr, nullptr, &jacobian);
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
   for (int row = 0; row < jacobian.num_rows; ++row) {
@@ -239,6 +249,9 @@ void CeresRefinerOptions::Validate() const {
   require(max_line_thickness > 0.0 && max_line_thickness <= 1.0,
           "max_line_thickness must be in (0, 1]");
   require(degeneracy_ratio >= 0.0 && degeneracy_ratio < 1.0, "degeneracy_ratio must be in [0, 1)");
+  require(
+      !prior || (prior->inverse_sigma.allFinite() && (prior->inverse_sigma.array() >= 0.0).all()),
+      "a prior's inverse σ must be finite and >= 0");
 }
 
 RefinementResult RefineCeres(const MapView& map, const LaserScan& scan,

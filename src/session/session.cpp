@@ -30,6 +30,13 @@ bool PredictionDisproved(const LocalisationResult& result, double cost_ratio) {
 
 }  // namespace
 
+void MotionPriorOptions::Validate() const {
+  if (!(floor_m > 0.0 && along_per_m >= 0.0 && across_per_m >= 0.0) ||
+      !std::isfinite(floor_m + along_per_m + across_per_m))
+    throw std::invalid_argument(
+        "MotionPriorOptions: floor_m must be positive and the growths per metre >= 0");
+}
+
 void SessionOptions::Validate() const {
   auto require = [](bool ok, const char* what) {
     if (!ok) throw std::invalid_argument(std::string("SessionOptions: ") + what);
@@ -47,6 +54,7 @@ void SessionOptions::Validate() const {
   require(insert_translation_m >= 0.0 && insert_rotation_rad >= 0.0,
           "insert thresholds must be >= 0");
   signature.Validate();
+  motion_prior.Validate();
   recovery.Validate();
   loop_closure.Validate();
   require(std::isfinite(initial_pose.x_m) && std::isfinite(initial_pose.y_m) &&
@@ -177,7 +185,8 @@ std::vector<Candidate> Session::MakeCandidates(const Pose2D& prediction,
 // signature when so configured. A confirmed refinement is the posture and teaches the signature;
 // an unconfirmed one is flagged, and the posture may stay the prediction (TakesPrediction).
 void Session::LocaliseInto(IterationRecord& record, const Iteration& iteration) {
-  const LocalisationOptions options = BoundedOptions(record);
+  LocalisationOptions options = BoundedOptions(record);
+  AddMotionPrior(options, record.prediction, iteration);
   std::vector<Candidate> candidates = MakeCandidates(record.prediction, iteration);
   const bool was_lost = drift_.lost();
   if (was_lost) AddSearchCandidates(record, iteration.scan, candidates);
@@ -235,6 +244,18 @@ LocalisationOptions Session::BoundedOptions(IterationRecord& record) const {
     options.validation.max_expect_value_m = record.signature_expect_value_m;
   record.max_expect_value_m = options.validation.max_expect_value_m;
   return options;
+}
+
+void Session::AddMotionPrior(LocalisationOptions& options, const Pose2D& prediction,
+                             const Iteration& iteration) const {
+  const MotionPriorOptions& prior = options_.motion_prior;
+  if (!prior.enabled || !iteration.odometry || count_ == 0) return;
+  const Pose2D step = Between(last_localised_odometry_, *iteration.odometry);
+  const double moved_m = std::hypot(step.x_m, step.y_m);
+  options.refiner.ceres.prior =
+      PosturePrior{mounting_.LaserPose(prediction),
+                   Eigen::Vector3d(1.0 / (prior.floor_m + prior.along_per_m * moved_m),
+                                   1.0 / (prior.floor_m + prior.across_per_m * moved_m), 0.0)};
 }
 
 void Session::AfterLocalised(IterationRecord& record, const Iteration& iteration, bool was_lost) {

@@ -3,6 +3,8 @@
 // each valid beam against the local line of the surface it hits, under a robust kernel, with the
 // correspondences renewed by re-simulating the scan at each outer iteration.
 
+#include <Eigen/Core>
+#include <optional>
 #include <string>
 
 #include "scanloc/refinement/refinement.hpp"
@@ -27,6 +29,17 @@ enum class PointAssociation {
 };
 const char* ToString(PointAssociation association);
 PointAssociation ParsePointAssociation(const std::string& name);
+
+// A prior on the laser's posture, such as the odometry's prediction: the refinement minimises
+// the Likelihood Distance plus ½Σ(c·dᵢ/σᵢ)², d = (along, across, heading) the posture's difference
+// from `mean` in mean's frame and c the kernel's scale (LikelihoodDistanceOptions::scale_m), the
+// beams' own unit. Where the scan constrains the posture the beams outweigh it; along a direction
+// they leave free (a corridor's axis) the prior holds the posture.
+struct PosturePrior {
+  Pose2D mean;  // T_world_laser
+  // 1/σ per component (1/m, 1/m, 1/rad); 0 leaves that component to the beams alone.
+  Eigen::Vector3d inverse_sigma = Eigen::Vector3d::Zero();
+};
 
 struct CeresRefinerOptions {
   int max_outer_iterations = 15;   // re-simulations (new correspondences)
@@ -53,6 +66,9 @@ struct CeresRefinerOptions {
   // Score the initial posture (a simulated scan and both tests); callers that already did may
   // turn it off, and test_before / distance_before are then left empty.
   bool score_initial = true;
+  // Not a configuration key: a caller that has a prior for this scan (the session's motion prior)
+  // sets it. The uncertainty and degeneracy verdict stay the beams' alone.
+  std::optional<PosturePrior> prior;
   void Validate() const;
 };
 

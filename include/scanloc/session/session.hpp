@@ -22,6 +22,19 @@
 
 namespace scanloc {
 
+// The odometry's prediction as a prior on the refinement (PosturePrior), translation only: σ =
+// floor_m + per_m · the distance the odometry moved since the last localised scan, along the
+// motion and across it. Where the scan leaves the posture free (a corridor's axis) the refinement
+// keeps the odometry's position instead of wandering on noise. No prior on the heading: in fast
+// turns the odometry's heading slips by degrees, and a prior there held it (docs/BENCHMARKS.md).
+struct MotionPriorOptions {
+  bool enabled = false;
+  double floor_m = 0.02;
+  double along_per_m = 0.1;
+  double across_per_m = 0.05;
+  void Validate() const;
+};
+
 struct SessionOptions {
   // Candidates: the odometry prediction turned by every multiple of heading_step_rad up to
   // ±heading_spread_rad (in fast in-place turns the odometry heading is off by 3–6° per scan).
@@ -68,6 +81,9 @@ struct SessionOptions {
   // their true poses, beyond the prior's 0.1 m, and the session stopped confirming anything.
   LaserSignatureOptions signature;
   bool learned_max_expect_value = true;
+  // Off by default: it makes the sparse logs' scan-to-scan steps more accurate but does not keep
+  // them from being lost (docs/BENCHMARKS.md, "A motion prior on the refinement").
+  MotionPriorOptions motion_prior;
   // When the session counts itself lost, and the wide search it then adds.
   RecoveryOptions recovery;
   // Nodes, closures and the pose graph whose corrections move the map.
@@ -127,6 +143,9 @@ class Session : public ScanProcessor {
   bool TakesPrediction(const IterationRecord& record, const RankedCandidate& kept) const;
   // Rule 2's E_max in force for the next localisation and the signature's bound, into `record`.
   LocalisationOptions BoundedOptions(IterationRecord& record) const;
+  // The odometry's prediction as the refinement's prior, when motion_prior is on.
+  void AddMotionPrior(LocalisationOptions& options, const Pose2D& prediction,
+                      const Iteration& iteration) const;
   // The drift after a localised scan, confirmed or not; `was_lost` before it.
   void AfterLocalised(IterationRecord& record, const Iteration& iteration, bool was_lost);
   void MaybeExtend(IterationRecord& record, const LaserScan& scan);
