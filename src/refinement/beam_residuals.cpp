@@ -78,17 +78,17 @@ bool BeamsResidual::Evaluate(double const* const* parameters, double* residuals,
   return true;
 }
 
-PriorResidual::PriorResidual(const double mean[3], const Eigen::Vector3d& weights)
-    : mean_{mean[0], mean[1], mean[2]}, weights_(weights) {}
+PriorResidual::PriorResidual(const Pose2D& mean, const Eigen::Vector3d& weights)
+    : mean_(mean), weights_(weights) {}
 
 bool PriorResidual::Evaluate(double const* const* parameters, double* residuals,
                              double** jacobians) const {
   const double* pose = parameters[0];
-  const double c = std::cos(mean_[2]), s = std::sin(mean_[2]);
-  const double dx = pose[0] - mean_[0], dy = pose[1] - mean_[1];
+  const double c = std::cos(mean_.yaw_rad), s = std::sin(mean_.yaw_rad);
+  const double dx = pose[0] - mean_.x_m, dy = pose[1] - mean_.y_m;
   residuals[0] = weights_(0) * (c * dx + s * dy);
   residuals[1] = weights_(1) * (-s * dx + c * dy);
-  residuals[2] = weights_(2) * std::remainder(pose[2] - mean_[2], 2.0 * M_PI);
+  residuals[2] = weights_(2) * NormalizeAngle(pose[2] - mean_.yaw_rad);
   if (jacobians != nullptr && jacobians[0] != nullptr) {
     const double rows[9] = {
         weights_(0) * c, weights_(0) * s, 0.0, -weights_(1) * s, weights_(1) * c, 0.0, 0.0, 0.0,

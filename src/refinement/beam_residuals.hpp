@@ -12,6 +12,8 @@
 #include <memory>
 #include <vector>
 
+#include "scanloc/geometry/pose2d.hpp"
+
 namespace scanloc {
 
 // The local line of the surface a beam hits: n·q = offset, n a unit normal.
@@ -72,13 +74,13 @@ class BeamsResidual : public ceres::CostFunction {
 // leaves that component to the beams alone.
 class PriorResidual : public ceres::SizedCostFunction<3, 3> {
  public:
-  PriorResidual(const double mean[3], const Eigen::Vector3d& weights);
+  PriorResidual(const Pose2D& mean, const Eigen::Vector3d& weights);
 
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override;
 
  private:
-  double mean_[3];
+  Pose2D mean_;
   Eigen::Vector3d weights_;
 };
 

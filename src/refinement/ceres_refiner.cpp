@@ -83,7 +83,8 @@ BuiltProblem BuildProblem(const MapView& map, const LaserScan& scan, const Pose2
   BuiltProblem built;
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  // One residual block on one valid parameter block: the checks would find nothing.
+  // One or two residual blocks (the beams, a prior) on one valid parameter block: the checks
+  // would find nothing.
   problem_options.disable_all_safety_checks = true;
   problem_options.context = SharedContext();
   built.problem = std::make_unique<ceres::Problem>(problem_options);
@@ -138,10 +139,8 @@ BuiltProblem BuildProblem(const MapView& map, const LaserScan& scan, const Pose2
       std::move(beams), cosine, std::unique_ptr<ceres::LossFunction>(MakeLoss(scoring.distance)));
   built.beams_block = built.problem->AddResidualBlock(built.residual.get(), nullptr, parameters);
   if (options.prior) {
-    const Pose2D& mean = options.prior->mean;
-    const double mean_array[3] = {mean.x_m, mean.y_m, mean.yaw_rad};
     built.prior = std::make_unique<PriorResidual>(
-        mean_array, scoring.distance.scale_m * options.prior->inverse_sigma);
+        options.prior->mean, scoring.distance.scale_m * options.prior->inverse_sigma);
     built.problem->AddResidualBlock(built.prior.get(), nullptr, parameters);
   }
   return built;
