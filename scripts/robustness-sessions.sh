@@ -30,26 +30,32 @@ perturbations=(
 )
 mkdir -p "$out"
 rm -f "$out/jobs" "$out/failed"
+# Every job is four NUL-terminated fields (INDEX NAME LOG RELATIONS), so that a path may hold
+# spaces; the session arguments are NUL-terminated in a file, read by every job.
+: > "$out/session-args"
+if [ ${#extra[@]} -gt 0 ]; then printf '%s\0' "${extra[@]}" > "$out/session-args"; fi
+job() { printf '%s\0' "$@" >> "$out/jobs"; }
 for i in "${!perturbations[@]}"; do
   mkdir -p "$out/p$i"
   echo "${perturbations[$i]:-default}" > "$out/p$i/perturbation"
   for log in intel aces fr079; do
-    echo "$i $log $datasets/$log.clf.gz $datasets/$log.relations" >> "$out/jobs"
+    job "$i" "$log" "$datasets/$log.clf.gz" "$datasets/$log.relations"
   done
   for log in seattle orebro fhw edmonton acapulco; do
     for kind in noisy exact; do
-      echo "$i $log-$kind $datasets/radish/$log.$kind.clf.gz $datasets/radish/$log.relations" \
-        >> "$out/jobs"
+      job "$i" "$log-$kind" "$datasets/radish/$log.$kind.clf.gz" "$datasets/radish/$log.relations"
     done
   done
 done
 
-# One session and its scores: run_one INDEX NAME LOG RELATIONS.
+# One session and its scores: run_one INDEX NAME LOG RELATIONS. The perturbation is read from
+# OUT_DIR/pINDEX/perturbation ("default": none).
 run_one() {
-  local i=$1 name=$2 log=$3 relations=$4 dir="$out/p$1"
-  local p=${perturbations[$i]} args=("${extra[@]}")
-  [ -n "$p" ] && args+=(--set "$p")
-  echo "robustness-sessions: $name ${p:-default}" >&2
+  local i=$1 name=$2 log=$3 relations=$4 dir="$out/p$1" p args
+  mapfile -d '' -t args < "$out/session-args"
+  p=$(< "$dir/perturbation")
+  [ "$p" != default ] && args+=(--set "$p")
+  echo "robustness-sessions: $name $p" >&2
   # Nothing of an earlier run in OUT_DIR may be scored in place of this one.
   rm -rf "${dir:?}/$name" "$dir/$name".*
   if ! "$scanloc" session --log "$log" --out "$dir/$name" --force --quiet "${args[@]}" \
@@ -67,13 +73,5 @@ run_one() {
 }
 export -f run_one
 export out scanloc
-export perturbations_text extra_text
-# Arrays do not cross into xargs' shells: pass them as lines.
-perturbations_text=$(printf '%s\n' "${perturbations[@]}")
-extra_text=$(printf '%s\n' "${extra[@]+"${extra[@]}"}")
-xargs -P "${JOBS:-$(nproc)}" -L 1 bash -c '
-  mapfile -t perturbations <<< "$perturbations_text"
-  mapfile -t extra <<< "$extra_text"
-  [ -z "${extra[0]}" ] && extra=()
-  run_one "$@"' run_one < "$out/jobs"
+xargs -0 -n 4 -P "${JOBS:-$(nproc)}" bash -c 'run_one "$@"' run_one < "$out/jobs"
 SCANLOC_DATASETS="$datasets" python3 scripts/robustness-summary.py "$out" "${#perturbations[@]}"
