@@ -1,7 +1,8 @@
 // A ROS bag's structure and messages checked before rosbag and roscpp believe their lengths
 // (src/io/ros_bag_structure.cpp): the fuzz seeds (plain, bz2 and lz4 chunks, odometry from /odom
 // and /tf) read; the fuzzer's 4 GB header, a header length patched by hand and a LaserScan whose
-// ranges count exceeds its bytes are refused with where and what was expected.
+// ranges count exceeds its bytes are refused with where and what was expected, and so is the
+// fuzzer's static transform with a NaN (C12).
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -51,8 +52,8 @@ class RosBagStructureTest : public testing::TemporaryDirTest {};
 
 TEST_F(RosBagStructureTest, TheSeedBagsReadWithEveryCompressionAndOdometrySource) {
   SKIP_WITHOUT_ROSBAG();
-  for (const char* seed : {"tiny-topic-none.bag", "tiny-topic-bz2.bag", "tiny-topic-lz4.bag",
-                           "tiny-tf-none.bag"}) {
+  for (const char* seed :
+       {"tiny-topic-none.bag", "tiny-topic-bz2.bag", "tiny-topic-lz4.bag", "tiny-tf-none.bag"}) {
     SCOPED_TRACE(seed);
     EXPECT_EQ(ReadAll(kSeeds + seed), 3u);
   }
@@ -64,6 +65,17 @@ TEST_F(RosBagStructureTest, AConnectionHeaderAnnouncing4GBIsRefusedWithItsByte) 
                                     "/fuzz/crashes/ros_bag/"
                                     "connection-header-length-makes-rosbag-allocate-4-GB.bag");
   EXPECT_TRUE(testing::Contains(error, "at byte 15096: expected a record op")) << error;
+}
+
+TEST_F(RosBagStructureTest, ANaNInTheStaticTransformToTheLaserIsRefusedWithItsFrames) {
+  SKIP_WITHOUT_ROSBAG();
+  const std::string error = ErrorOf(std::string(SCANLOC_SOURCE_DIR) +
+                                    "/fuzz/crashes/ros_bag/"
+                                    "tf-static-nan-makes-a-non-finite-mounting.bag");
+  EXPECT_TRUE(testing::Contains(error,
+                                "/tf_static's transform from 'base_link' to 'laser': "
+                                "expected a finite pose"))
+      << error;
 }
 
 TEST_F(RosBagStructureTest, ARecordHeaderLengthBeyondTheFileIsRefused) {

@@ -76,6 +76,16 @@ Pose2D PlanarPose(const geometry_msgs::Transform& t) {
   return Pose2D(t.translation.x, t.translation.y, YawOf(t.rotation)).Normalized();
 }
 
+// `pose` as read from the bag, refused with `what` when a field is NaN or infinite (as read, or
+// after composing or interpolating poses of huge but finite fields).
+Pose2D RequireFinite(const Pose2D& pose, const std::string& what) {
+  if (std::isfinite(pose.x_m) && std::isfinite(pose.y_m) && std::isfinite(pose.yaw_rad))
+    return pose;
+  throw std::runtime_error(what + ": expected a finite pose, got (" + std::to_string(pose.x_m) +
+                           ", " + std::to_string(pose.y_m) + ", " + std::to_string(pose.yaw_rad) +
+                           ")");
+}
+
 LaserScan ToLaserScan(const sensor_msgs::LaserScan& message) {
   LaserScan scan;
   const std::size_t n = message.ranges.size();
@@ -220,14 +230,19 @@ struct RosBagIterationSource::Impl {
         throw std::runtime_error("ROS bag " + path + ": /tf_static has no path from " + base +
                                  " to the scan's frame '" + laser_frame +
                                  "' (give the mounting, e.g. --laser-offset, or --base-frame)");
-      T_frame_laser = link->second.second * T_frame_laser;
+      const std::string where = "ROS bag " + path + ": /tf_static's transform from '" +
+                                link->second.first + "' to '" + frame + "'";
+      T_frame_laser = RequireFinite(link->second.second, where) * T_frame_laser;
       frame = link->second.first;
+      RequireFinite(T_frame_laser, where + ", composed up to '" + frame + "',");
     }
     return T_frame_laser.Normalized();
   }
 
-  void AddOdometry(double stamp_s, const Pose2D& pose) {
-    StampedOdometry sample{stamp_s, pose};
+  void AddOdometry(double stamp_s, const Pose2D& pose, const std::string& topic) {
+    StampedOdometry sample{stamp_s,
+                           RequireFinite(pose, "ROS bag " + path + ": the odometry on " + topic +
+                                                   " stamped " + std::to_string(stamp_s) + " s")};
     auto at = std::upper_bound(
         odometry.begin(), odometry.end(), stamp_s,
         [](double t, const StampedOdometry& s) { return t < s.stamp_s; });  // usually the end
@@ -255,13 +270,14 @@ struct RosBagIterationSource::Impl {
       if (auto odom = Instantiate<nav_msgs::Odometry>(m, bag::CheckOdometryBytes, path)) {
         const auto& p = odom->pose.pose;
         AddOdometry(odom->header.stamp.toSec(),
-                    Pose2D(p.position.x, p.position.y, YawOf(p.orientation)).Normalized());
+                    Pose2D(p.position.x, p.position.y, YawOf(p.orientation)).Normalized(),
+                    m.getTopic());
       }
     } else if (auto tf = Instantiate<tf2_msgs::TFMessage>(m, bag::CheckTfMessageBytes, path)) {
       for (const auto& t : tf->transforms)
         if (FrameName(t.header.frame_id) == FrameName(options.odom_frame) &&
             FrameName(t.child_frame_id) == FrameName(options.base_frame))
-          AddOdometry(t.header.stamp.toSec(), PlanarPose(t.transform));
+          AddOdometry(t.header.stamp.toSec(), PlanarPose(t.transform), m.getTopic());
     }
     ++cursor;
     ++messages_read;
@@ -304,6 +320,9 @@ struct RosBagIterationSource::Impl {
     iteration = Iteration{};
     iteration.timestamp_s = next.scan.timestamp_s;
     iteration.odometry = OdometryAt(iteration.timestamp_s);
+    if (iteration.odometry)
+      RequireFinite(*iteration.odometry,
+                    "ROS bag " + next.origin + ": the odometry interpolated at the scan's stamp");
     iteration.origin = std::move(next.origin);
     iteration.scan = std::move(next.scan);
     // Samples before the one bracketing this scan are no longer needed (stamps only grow).
