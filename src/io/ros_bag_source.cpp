@@ -76,14 +76,16 @@ Pose2D PlanarPose(const geometry_msgs::Transform& t) {
   return Pose2D(t.translation.x, t.translation.y, YawOf(t.rotation)).Normalized();
 }
 
-// `pose` as read from the bag, refused with `what` when a field is NaN or infinite (as read, or
-// after composing or interpolating poses of huge but finite fields).
-Pose2D RequireFinite(const Pose2D& pose, const std::string& what) {
+// `pose` as read from the bag, refused with what `describe()` says it is when a field is NaN or
+// infinite (as read, or after composing or interpolating poses of huge but finite fields). The
+// description is built only then: odometry passes here message by message.
+template <typename Describe>
+Pose2D RequireFinite(const Pose2D& pose, Describe&& describe) {
   if (std::isfinite(pose.x_m) && std::isfinite(pose.y_m) && std::isfinite(pose.yaw_rad))
     return pose;
-  throw std::runtime_error(what + ": expected a finite pose, got (" + std::to_string(pose.x_m) +
-                           ", " + std::to_string(pose.y_m) + ", " + std::to_string(pose.yaw_rad) +
-                           ")");
+  throw std::runtime_error(describe() + ": expected a finite pose, got (" +
+                           std::to_string(pose.x_m) + ", " + std::to_string(pose.y_m) + ", " +
+                           std::to_string(pose.yaw_rad) + ")");
 }
 
 LaserScan ToLaserScan(const sensor_msgs::LaserScan& message) {
@@ -232,17 +234,18 @@ struct RosBagIterationSource::Impl {
                                  "' (give the mounting, e.g. --laser-offset, or --base-frame)");
       const std::string where = "ROS bag " + path + ": /tf_static's transform from '" +
                                 link->second.first + "' to '" + frame + "'";
-      T_frame_laser = RequireFinite(link->second.second, where) * T_frame_laser;
+      T_frame_laser = RequireFinite(link->second.second, [&] { return where; }) * T_frame_laser;
       frame = link->second.first;
-      RequireFinite(T_frame_laser, where + ", composed up to '" + frame + "',");
+      RequireFinite(T_frame_laser, [&] { return where + ", composed up to '" + frame + "',"; });
     }
     return T_frame_laser.Normalized();
   }
 
   void AddOdometry(double stamp_s, const Pose2D& pose, const std::string& topic) {
-    StampedOdometry sample{stamp_s,
-                           RequireFinite(pose, "ROS bag " + path + ": the odometry on " + topic +
-                                                   " stamped " + std::to_string(stamp_s) + " s")};
+    StampedOdometry sample{stamp_s, RequireFinite(pose, [&] {
+                             return "ROS bag " + path + ": the odometry on " + topic + " stamped " +
+                                    std::to_string(stamp_s) + " s";
+                           })};
     auto at = std::upper_bound(
         odometry.begin(), odometry.end(), stamp_s,
         [](double t, const StampedOdometry& s) { return t < s.stamp_s; });  // usually the end
@@ -321,8 +324,9 @@ struct RosBagIterationSource::Impl {
     iteration.timestamp_s = next.scan.timestamp_s;
     iteration.odometry = OdometryAt(iteration.timestamp_s);
     if (iteration.odometry)
-      RequireFinite(*iteration.odometry,
-                    "ROS bag " + next.origin + ": the odometry interpolated at the scan's stamp");
+      RequireFinite(*iteration.odometry, [&] {
+        return "ROS bag " + next.origin + ": the odometry interpolated at the scan's stamp";
+      });
     iteration.origin = std::move(next.origin);
     iteration.scan = std::move(next.scan);
     // Samples before the one bracketing this scan are no longer needed (stamps only grow).
