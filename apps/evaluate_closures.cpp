@@ -127,6 +127,55 @@ void PrintTally(const char* name, const ClosureTally& tally) {
   std::printf("\n");
 }
 
+// The bins of how far a closure moved its scan from the session's posture, metres.
+const std::vector<double> kDisagreementEdgesM = {0.02, 0.04, 0.08, 0.16};
+
+// The session's own postures of the closures' scans: the online trajectory (what the session gave
+// before any graph correction), or nothing when the run has none.
+std::optional<std::pair<std::string, std::vector<StampedPose>>> SessionPostures(
+    const std::filesystem::path& folder) {
+  const std::filesystem::path path = folder / "trajectory-online.tum";
+  if (!std::filesystem::exists(path)) return std::nullopt;
+  return std::make_pair(path.filename().string(), ReadTumTrajectory(path.string()));
+}
+
+void PrintBeside(const std::string& trajectory_name, const ClosuresBesideTrajectory& beside,
+                 bool graph_known) {
+  std::printf("the session's own postures of the same scans (%s), %zu closures:\n",
+              trajectory_name.c_str(), beside.compared.size());
+  PrintTally("measured", beside.trajectory.measured);
+  PrintTally("accepted", beside.trajectory.accepted);
+  if (graph_known) PrintTally("in the graph", beside.trajectory.in_graph);
+  std::printf("right, by how far the closure moved the scan from the session's posture:\n");
+  for (const DisagreementBin& bin : RightByDisagreement(beside, kDisagreementEdgesM)) {
+    if (std::isinf(bin.to_m))
+      std::printf("  >= %.2f m      ", bin.from_m);
+    else
+      std::printf("  %.2f–%.2f m    ", bin.from_m, bin.to_m);
+    std::printf("%4zu closures   closure right %4zu   session right %4zu\n", bin.closures,
+                bin.closure_right, bin.trajectory_right);
+  }
+}
+
+nlohmann::json BesideJson(const std::string& trajectory_name,
+                          const ClosuresBesideTrajectory& beside, bool graph_known) {
+  nlohmann::json bins = nlohmann::json::array();
+  for (const DisagreementBin& bin : RightByDisagreement(beside, kDisagreementEdgesM))
+    bins.push_back(
+        {{"from_m", bin.from_m},
+         {"to_m", std::isinf(bin.to_m) ? nlohmann::json(nullptr) : nlohmann::json(bin.to_m)},
+         {"closures", bin.closures},
+         {"closure_right", bin.closure_right},
+         {"session_right", bin.trajectory_right}});
+  return {{"trajectory", trajectory_name},
+          {"compared", beside.compared.size()},
+          {"not_in_trajectory", beside.not_in_trajectory},
+          {"measured", TallyJson(beside.trajectory.measured)},
+          {"accepted", TallyJson(beside.trajectory.accepted)},
+          {"in_graph", graph_known ? TallyJson(beside.trajectory.in_graph) : nullptr},
+          {"by_disagreement", bins}};
+}
+
 void PrintText(const ClosureEvaluationArguments& a, const RunClosures& run,
                const ClosurePrecision& precision) {
   std::printf("closures: %zu tried, %zu measured, %zu accepted", run.tried,
@@ -156,21 +205,34 @@ void EvaluateRunClosures(const ClosureEvaluationArguments& a) {
   options.timestamp_tolerance_s = a.tolerance_s;
   options.max_translation_error_m = a.max_error_m;
   options.max_rotation_error_deg = a.max_error_deg;
-  const ClosurePrecision precision =
-      EvaluateClosures(run.measurements, ReadReferencePoses(a.reference_path), options);
+  const std::vector<StampedPose> reference = ReadReferencePoses(a.reference_path);
+  const ClosurePrecision precision = EvaluateClosures(run.measurements, reference, options);
   if (precision.measured.evaluation.matched == 0)
     throw std::runtime_error("no measured closure has reference poses for both of its scans (" +
                              std::to_string(run.measurements.size()) +
                              " closures; timestamp tolerance " + std::to_string(a.tolerance_s) +
                              " s): are " + a.reference_path + " and " + a.run_folder +
                              " of the same log?");
-  if (!a.json) return PrintText(a, run, precision);
+  const auto session = SessionPostures(folder);
+  std::optional<ClosuresBesideTrajectory> beside;
+  if (session)
+    beside = CompareWithTrajectory(run.measurements, reference, session->second, options);
+  else
+    std::cerr << "warning: " << a.run_folder
+              << " has no trajectory-online.tum: the closures are not compared with the "
+                 "session's own postures\n";
+  if (!a.json) {
+    PrintText(a, run, precision);
+    if (beside) PrintBeside(session->first, *beside, run.graph_known);
+    return;
+  }
   nlohmann::json out = {{"tried", run.tried},
                         {"measured", TallyJson(precision.measured)},
                         {"accepted", TallyJson(precision.accepted)},
                         {"in_graph", nullptr},
                         {"closures", ClosuresJson(run, precision)}};
   if (run.graph_known) out["in_graph"] = TallyJson(precision.in_graph);
+  out["session"] = beside ? BesideJson(session->first, *beside, run.graph_known) : nullptr;
   std::cout << out.dump(2) << '\n';
 }
 

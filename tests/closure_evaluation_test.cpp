@@ -85,6 +85,64 @@ TEST(ClosurePrecision, ARotationBeyondTheBoundIsWrongAndBoundsMustBePositive) {
   }
 }
 
+// Scan `now` placed `off_m` metres wrong along the x axis of scan `old`.
+Pose2D PlacedOff(std::size_t old, std::size_t now, double off_m) {
+  Pose2D T_old_robot = Between(Truth(old), Truth(now));
+  T_old_robot.x_m += off_m;
+  return Truth(old) * T_old_robot;
+}
+
+// The session's own trajectory: scans 10 and 13 placed 0.2 m off as seen from scans 2 and 5, the
+// rest right, and scan 12 absent.
+std::vector<StampedPose> SessionTrajectory() {
+  std::vector<StampedPose> poses;
+  for (std::size_t i = 0; i < kScans; ++i) {
+    if (i == 12) continue;
+    Pose2D pose = Truth(i);
+    if (i == 10) pose = PlacedOff(2, 10, 0.2);
+    if (i == 13) pose = PlacedOff(5, 13, 0.2);
+    poses.push_back({static_cast<double>(i), pose});
+  }
+  return poses;
+}
+
+TEST(ClosuresBesideTrajectory, EachClosureIsScoredBesideTheTrajectorysPostureOfItsTwoScans) {
+  const std::vector<ClosureMeasurement> closures = {
+      Measured(2, 10, 0.0, true, true),     // right, where the session is 0.2 m off
+      Measured(3, 11, 0.3, false, true),    // 0.3 m wrong, where the session is right
+      Measured(4, 12, 0.0, true, false),    // the session has no scan 12
+      Measured(5, 13, 0.15, true, false),   // 0.15 m wrong, the session 0.2 m
+      Measured(6, 14, 0.01, false, false),  // both right, 1 cm apart
+  };
+  const ClosuresBesideTrajectory beside =
+      CompareWithTrajectory(closures, Reference(), SessionTrajectory());
+  EXPECT_EQ(beside.compared, (std::vector<std::size_t>{0, 1, 3, 4}));
+  EXPECT_EQ(beside.not_in_trajectory, 1u);
+  EXPECT_EQ(beside.closures.right, (std::vector<bool>{true, false, false, true}));
+  EXPECT_EQ(beside.trajectory.right, (std::vector<bool>{false, true, false, true}));
+  EXPECT_EQ(beside.trajectory.accepted.closures, 2u);
+  EXPECT_EQ(beside.trajectory.accepted.right, 0u);
+  ASSERT_EQ(beside.disagreement_m.size(), 4u);
+  EXPECT_NEAR(beside.disagreement_m[0], 0.2, kTolerance);
+  EXPECT_NEAR(beside.disagreement_m[1], 0.3, kTolerance);
+  EXPECT_NEAR(beside.disagreement_m[2], 0.05, kTolerance);
+  EXPECT_NEAR(beside.disagreement_m[3], 0.01, kTolerance);
+
+  const std::vector<DisagreementBin> bins = RightByDisagreement(beside, {0.02, 0.1});
+  ASSERT_EQ(bins.size(), 3u);
+  EXPECT_EQ(bins[0].closures, 1u);  // 1 cm
+  EXPECT_EQ(bins[0].closure_right, 1u);
+  EXPECT_EQ(bins[0].trajectory_right, 1u);
+  EXPECT_EQ(bins[1].closures, 1u);  // 5 cm: both wrong
+  EXPECT_EQ(bins[1].closure_right + bins[1].trajectory_right, 0u);
+  EXPECT_EQ(bins[2].closures, 2u);  // 0.2 and 0.3 m: one right each
+  EXPECT_EQ(bins[2].closure_right, 1u);
+  EXPECT_EQ(bins[2].trajectory_right, 1u);
+  EXPECT_TRUE(std::isinf(bins[2].to_m));
+  EXPECT_THROW(RightByDisagreement(beside, {0.1, 0.02}), std::invalid_argument);
+  EXPECT_THROW(RightByDisagreement(beside, {0.0}), std::invalid_argument);
+}
+
 // A run folder of kScans records along the reference, with closures written as a session does.
 class EvaluateClosuresCliTest : public testing::TemporaryDirTest {
  protected:
@@ -135,6 +193,7 @@ class EvaluateClosuresCliTest : public testing::TemporaryDirTest {
     graph.AddEdge(
         {3, 11, Between(Truth(3), Truth(11)), Eigen::Matrix3d::Identity(), EdgeKind::kClosure});
     Write("run/iterations.jsonl", records);
+    WriteTumTrajectory(dir_ + "/run/trajectory-online.tum", SessionTrajectory());
     WriteG2o(graph, dir_ + "/run/graph.g2o");
     WriteTumTrajectory(dir_ + "/reference.tum", Reference());
   }
@@ -167,6 +226,34 @@ TEST_F(EvaluateClosuresCliTest, CountsTheRightClosuresAmongTheAcceptedAndThoseIn
   const auto text = Evaluate(dir_ + "/reference.tum");
   EXPECT_TRUE(Contains(text.out, "4 tried, 3 measured, 2 accepted, 2 in the graph")) << text;
   EXPECT_TRUE(Contains(text.out, "accepted         1 of    2 ( 50 %)")) << text;
+}
+
+TEST_F(EvaluateClosuresCliTest, TheClosuresAreSetBesideTheSessionsOwnPostures) {
+  WriteRun();
+  const auto run = Evaluate(dir_ + "/reference.tum", true);
+  ASSERT_TRUE(run.exited && run.exit_code == 0) << run;
+  const auto session = nlohmann::json::parse(run.out)["session"];
+  EXPECT_EQ(session["trajectory"], "trajectory-online.tum");
+  EXPECT_EQ(session["compared"], 3);           // the measured closures 2→10, 3→11 and 5→13
+  EXPECT_EQ(session["measured"]["right"], 1);  // 3→11: the session is right, the closure not
+  EXPECT_EQ(session["accepted"]["right"], 0);  // 2→10 and 5→13: the session is 0.2 m off
+  EXPECT_EQ(session["in_graph"]["right"], 1);  // 3→11
+  const auto bins = session["by_disagreement"];
+  ASSERT_EQ(bins.size(), 5u);
+  EXPECT_EQ(bins[3]["closures"], 1);  // 5→13: 0.3 m against 0.2 m, 0.1 m apart, both wrong
+  EXPECT_EQ(bins[3]["closure_right"], 0);
+  EXPECT_EQ(bins[3]["session_right"], 0);
+  EXPECT_EQ(bins[4]["closures"], 2);  // 0.2 and 0.3 m apart
+  EXPECT_EQ(bins[4]["closure_right"], 1);
+  EXPECT_EQ(bins[4]["session_right"], 1);
+  EXPECT_TRUE(bins[4]["to_m"].is_null());
+  const auto text = Evaluate(dir_ + "/reference.tum");
+  EXPECT_TRUE(Contains(text.out, "the session's own postures of the same scans")) << text;
+  std::filesystem::remove(dir_ + "/run/trajectory-online.tum");
+  const auto without = Evaluate(dir_ + "/reference.tum", true);
+  ASSERT_TRUE(without.exited && without.exit_code == 0) << without;
+  EXPECT_TRUE(nlohmann::json::parse(without.out)["session"].is_null());
+  EXPECT_TRUE(Contains(without.err, "no trajectory-online.tum")) << without;
 }
 
 TEST_F(EvaluateClosuresCliTest, ARunWithoutClosuresOrWithAnotherLogsReferenceFailsSayingWhy) {

@@ -6,6 +6,7 @@
 #include <iterator>
 #include <optional>
 #include <stdexcept>
+#include <string>
 
 #include "scanloc/common/bounded_line.hpp"
 #include "scanloc/common/parse_error.hpp"
@@ -76,6 +77,12 @@ ErrorStatistics Statistics(const std::vector<double>& values) {
   return statistics;
 }
 
+void RequireTolerance(const RelationsEvaluationOptions& options, const char* function) {
+  if (!(options.timestamp_tolerance_s >= 0.0) || !std::isfinite(options.timestamp_tolerance_s))
+    throw std::invalid_argument(std::string(function) +
+                                ": timestamp_tolerance_s must be finite and >= 0");
+}
+
 }  // namespace
 
 std::vector<Relation> ReadRelations(const std::string& path) {
@@ -109,11 +116,26 @@ std::vector<Relation> ReadRelations(const std::string& path) {
   return relations;
 }
 
+std::vector<std::optional<Pose2D>> RelativePoses(
+    const std::vector<StampedPose>& trajectory, const std::vector<std::pair<double, double>>& pairs,
+    const RelationsEvaluationOptions& options) {
+  RequireTolerance(options, "RelativePoses");
+  const TimestampIndex index(trajectory);
+  std::vector<std::optional<Pose2D>> relative;
+  relative.reserve(pairs.size());
+  for (const auto& [t1_s, t2_s] : pairs) {
+    const std::optional<Pose2D> T_w_1 = index.Find(t1_s, options.timestamp_tolerance_s);
+    const std::optional<Pose2D> T_w_2 = index.Find(t2_s, options.timestamp_tolerance_s);
+    relative.push_back(T_w_1 && T_w_2 ? std::optional<Pose2D>(Between(*T_w_1, *T_w_2))
+                                      : std::nullopt);
+  }
+  return relative;
+}
+
 RelationsEvaluation EvaluateRelations(const std::vector<StampedPose>& trajectory,
                                       const std::vector<Relation>& relations,
                                       const RelationsEvaluationOptions& options) {
-  if (!(options.timestamp_tolerance_s >= 0.0) || !std::isfinite(options.timestamp_tolerance_s))
-    throw std::invalid_argument("EvaluateRelations: timestamp_tolerance_s must be finite and >= 0");
+  RequireTolerance(options, "EvaluateRelations");
   const TimestampIndex index(trajectory);
   RelationsEvaluation evaluation;
   std::vector<double> translations_m, rotations_deg, translations_squared_m2,

@@ -50,4 +50,37 @@ ClosurePrecision EvaluateClosures(const std::vector<ClosureMeasurement>& closure
                                   const std::vector<StampedPose>& reference,
                                   const ClosurePrecisionOptions& options = {});
 
+// Does a closure know better than the session? The closures beside the relative postures a
+// trajectory (the session's own, as it gave them online) holds between the same two scans, both
+// scored on the same reference poses.
+struct ClosuresBesideTrajectory {
+  std::vector<std::size_t> compared;  // the closures whose two scans the trajectory has, in order
+  std::size_t not_in_trajectory = 0;  // the others
+  ClosurePrecision closures;          // the compared closures, scored
+  ClosurePrecision trajectory;        // the trajectory's relative postures of the same scans
+  // Per compared closure: how far it moved its scan from where the trajectory put it, seen from
+  // the old scan (the translation of closure ⊖ trajectory), metres.
+  std::vector<double> disagreement_m;
+};
+
+// Same errors as EvaluateClosures.
+ClosuresBesideTrajectory CompareWithTrajectory(const std::vector<ClosureMeasurement>& closures,
+                                               const std::vector<StampedPose>& reference,
+                                               const std::vector<StampedPose>& trajectory,
+                                               const ClosurePrecisionOptions& options = {});
+
+// The compared closures with reference poses, grouped by their disagreement with the trajectory:
+// bin k holds [edges_m[k-1], edges_m[k]) (bin 0 from 0, the last one open).
+struct DisagreementBin {
+  double from_m = 0.0;
+  double to_m = 0.0;                 // infinity for the last bin
+  std::size_t closures = 0;          // with reference poses for both scans
+  std::size_t closure_right = 0;     // the closure within the bounds
+  std::size_t trajectory_right = 0;  // the trajectory's relative posture within the bounds
+};
+
+// Throws std::invalid_argument unless edges_m is finite, positive and increasing.
+std::vector<DisagreementBin> RightByDisagreement(const ClosuresBesideTrajectory& comparison,
+                                                 const std::vector<double>& edges_m);
+
 }  // namespace scanloc

@@ -3,7 +3,9 @@
 // algorithms"): an estimated trajectory scored against ground-truth relations between scans.
 
 #include <cstddef>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "scanloc/geometry/pose2d.hpp"
@@ -56,5 +58,11 @@ struct RelationsEvaluation {
 RelationsEvaluation EvaluateRelations(const std::vector<StampedPose>& trajectory,
                                       const std::vector<Relation>& relations,
                                       const RelationsEvaluationOptions& options = {});
+
+// For each pair (t1, t2), the trajectory's relative pose Between(est(t1), est(t2)), est as
+// above; nothing when either pose is absent. Throws std::invalid_argument as EvaluateRelations.
+std::vector<std::optional<Pose2D>> RelativePoses(
+    const std::vector<StampedPose>& trajectory, const std::vector<std::pair<double, double>>& pairs,
+    const RelationsEvaluationOptions& options = {});
 
 }  // namespace scanloc
