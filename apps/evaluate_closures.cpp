@@ -141,8 +141,11 @@ std::optional<std::pair<std::string, std::vector<StampedPose>>> SessionPostures(
 
 void PrintBeside(const std::string& trajectory_name, const ClosuresBesideTrajectory& beside,
                  bool graph_known) {
-  std::printf("the session's own postures of the same scans (%s), %zu closures:\n",
+  std::printf("the session's own postures of the same scans (%s), %zu closures",
               trajectory_name.c_str(), beside.compared.size());
+  if (beside.not_in_trajectory > 0)
+    std::printf(" (%zu more have a scan it lacks)", beside.not_in_trajectory);
+  std::printf(":\n");
   PrintTally("measured", beside.trajectory.measured);
   PrintTally("accepted", beside.trajectory.accepted);
   if (graph_known) PrintTally("in the graph", beside.trajectory.in_graph);
@@ -174,6 +177,17 @@ nlohmann::json BesideJson(const std::string& trajectory_name,
           {"accepted", TallyJson(beside.trajectory.accepted)},
           {"in_graph", graph_known ? TallyJson(beside.trajectory.in_graph) : nullptr},
           {"by_disagreement", bins}};
+}
+
+// Each compared closure's record gains how far it moved its scan from the session's posture and
+// whether the session's own posture was right.
+void AddSessionPerClosure(const ClosuresBesideTrajectory& beside, nlohmann::json& closures) {
+  for (std::size_t k = 0; k < beside.compared.size(); ++k) {
+    nlohmann::json& closure = closures[beside.compared[k]];
+    closure["moved_from_session_m"] = beside.disagreement_m[k];
+    closure["session_right"] = nullptr;
+    if (beside.trajectory.errors[k]) closure["session_right"] = bool(beside.trajectory.right[k]);
+  }
 }
 
 void PrintText(const ClosureEvaluationArguments& a, const RunClosures& run,
@@ -233,6 +247,7 @@ void EvaluateRunClosures(const ClosureEvaluationArguments& a) {
                         {"closures", ClosuresJson(run, precision)}};
   if (run.graph_known) out["in_graph"] = TallyJson(precision.in_graph);
   out["session"] = beside ? BesideJson(session->first, *beside, run.graph_known) : nullptr;
+  if (beside) AddSessionPerClosure(*beside, out["closures"]);
   std::cout << out.dump(2) << '\n';
 }
 

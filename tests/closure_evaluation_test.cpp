@@ -247,6 +247,11 @@ TEST_F(EvaluateClosuresCliTest, TheClosuresAreSetBesideTheSessionsOwnPostures) {
   EXPECT_EQ(bins[4]["closure_right"], 1);
   EXPECT_EQ(bins[4]["session_right"], 1);
   EXPECT_TRUE(bins[4]["to_m"].is_null());
+  const auto closures = nlohmann::json::parse(run.out)["closures"];
+  ASSERT_EQ(closures.size(), 3u);
+  EXPECT_NEAR(closures[0]["moved_from_session_m"].get<double>(), 0.2, 1e-5);  // 2→10
+  EXPECT_EQ(closures[0]["session_right"], false);
+  EXPECT_EQ(closures[1]["session_right"], true);  // 3→11
   const auto text = Evaluate(dir_ + "/reference.tum");
   EXPECT_TRUE(Contains(text.out, "the session's own postures of the same scans")) << text;
   std::filesystem::remove(dir_ + "/run/trajectory-online.tum");
