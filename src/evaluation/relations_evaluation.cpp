@@ -136,20 +136,21 @@ RelationsEvaluation EvaluateRelations(const std::vector<StampedPose>& trajectory
                                       const std::vector<Relation>& relations,
                                       const RelationsEvaluationOptions& options) {
   RequireTolerance(options, "EvaluateRelations");
-  const TimestampIndex index(trajectory);
+  std::vector<std::pair<double, double>> pairs;
+  pairs.reserve(relations.size());
+  for (const Relation& relation : relations) pairs.emplace_back(relation.t1_s, relation.t2_s);
+  const std::vector<std::optional<Pose2D>> estimated = RelativePoses(trajectory, pairs, options);
   RelationsEvaluation evaluation;
   std::vector<double> translations_m, rotations_deg, translations_squared_m2,
       rotations_squared_deg2;
   for (std::size_t r = 0; r < relations.size(); ++r) {
     const Relation& relation = relations[r];
-    const std::optional<Pose2D> T_w_1 = index.Find(relation.t1_s, options.timestamp_tolerance_s);
-    const std::optional<Pose2D> T_w_2 = index.Find(relation.t2_s, options.timestamp_tolerance_s);
-    if (!T_w_1 || !T_w_2) {
+    if (!estimated[r]) {
       evaluation.unmatched_relations.push_back(relation);
       continue;
     }
     // δ ⊖ δ*: the estimated relative motion seen from the true one.
-    const Pose2D error = Between(relation.T_1_2, Between(*T_w_1, *T_w_2));
+    const Pose2D error = Between(relation.T_1_2, *estimated[r]);
     evaluation.errors.push_back(error);
     evaluation.matched_relations.push_back(r);
     const double translation_m = error.Translation().norm();
