@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -84,6 +86,34 @@ TEST(LoopCloser, ComingBackToTheStartCorrectsTheDriftOfTheNodes) {
       lap.truth.size(), end_drift_m, end_error_m, accepted, closer.attempts().size());
   EXPECT_LT(end_error_m, 0.25);
   EXPECT_LT(end_error_m, end_drift_m / 4.0);
+}
+
+TEST(LoopCloser, AMapRenderedWithinAPathHoldsOnlyTheNewestNodesWalls) {
+  const LineMap world = testing::RingBuilding();
+  const Lap lap = DriveRing(world);
+  LoopClosureOptions options;
+  options.enabled = true;
+  LoopCloser closer(options, LaserMounting{});
+  for (std::size_t i = 0; i < lap.truth.size(); ++i)
+    closer.AddNode(i, lap.scans[i], lap.truth[i], std::nullopt);
+  // The lap ends on the way from (22, 2) to (22, 10), facing +y: the last 6 m of it see nothing
+  // below y = 4, the whole lap sees the wall at y = 0.
+  const MapExtensionOptions extension;
+  const PointMap whole = closer.Render(PointMapOptions{}, extension);
+  const std::size_t first = closer.FirstNewestNode(6.0, 0);
+  EXPECT_NEAR(closer.path_m(), 92.0, 0.5);
+  EXPECT_EQ(closer.FirstNewestNode(6.0, lap.truth.size() - first + 5), first - 5);
+  const PointMap newest = closer.Render(PointMapOptions{}, extension, first);
+  auto lowest_y = [](const PointMap& map) {
+    double lowest = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < map.size(); ++i)
+      if (map.alive(i)) lowest = std::min(lowest, map.point(i).y());
+    return lowest;
+  };
+  ASSERT_GT(newest.live_size(), 0u);
+  EXPECT_LT(newest.live_size(), whole.live_size() / 4);
+  EXPECT_LT(lowest_y(whole), 0.1);
+  EXPECT_GT(lowest_y(newest), 3.9);
 }
 
 }  // namespace

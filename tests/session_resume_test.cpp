@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -35,8 +36,8 @@ const Drive& RingDrive() {
   static const Drive drive = [] {
     RobotPathOptions path;
     path.step_m = 0.4;
-    const std::vector<Pose2D> truth = FollowWaypoints(
-        Pose2D(2.0, 2.0, 0.0), {{22, 2}, {22, 14}, {2, 14}, {2, 2}, {10, 2}}, path);
+    const std::vector<Pose2D> truth =
+        FollowWaypoints(Pose2D(2.0, 2.0, 0.0), {{22, 2}, {22, 14}, {2, 14}, {2, 2}, {10, 2}}, path);
     const LaserSimulatorOptions laser = testing::RingBuildingLaser();
     std::mt19937 random(11);
     Drive d;
@@ -73,11 +74,14 @@ class DriveSource : public IterationSource {
   std::size_t scans_, next_ = 0;
 };
 
-SessionFactory Factory() {
-  return [](const IterationSource& source) {
+// A session with loop closure, tracking against every node or (tracking_path_m > 0) against the
+// newest nodes only.
+SessionFactory Factory(double tracking_path_m = 0.0) {
+  return [tracking_path_m](const IterationSource& source) {
     SessionConfig config;
     config.session.initial_pose = {2.0, 2.0, 0.0};
     config.session.loop_closure.enabled = true;
+    config.session.loop_closure.tracking_path_m = tracking_path_m;
     return std::make_unique<Session>(config, source.mounting(), LineMap{}, PointMap{});
   };
 }
@@ -85,13 +89,14 @@ SessionFactory Factory() {
 const nlohmann::json kIdentity = {{"command", "session"}, {"log", "ring.log"}};
 
 // A whole run into `folder`: the session over `scans` scans (at most `max_scans`), then the files.
-SessionRun RunInto(RunFolder& folder, std::size_t scans, std::size_t max_scans = 0) {
+SessionRun RunInto(RunFolder& folder, std::size_t scans, std::size_t max_scans = 0,
+                   double tracking_path_m = 0.0) {
   DriveSource source(scans);
   folder.Begin(kIdentity);
   SessionRunOptions options;
   options.progress = false;
   options.max_scans = max_scans;
-  SessionRun run = RunSession(source, Factory(), folder, options);
+  SessionRun run = RunSession(source, Factory(tracking_path_m), folder, options);
   folder.Correct(run.session->CorrectedPostures());
   folder.WriteGraph(*run.session->pose_graph());
   folder.Finish(run.session->point_map(), SummaryJson(run, source));
@@ -130,7 +135,7 @@ std::string Bytes(const std::string& path) {
 class SessionResumeTest : public testing::TemporaryDirTest {
  protected:
   // A run cut off after `cut` iterations with half a record after them, as a kill leaves it.
-  void CutRun(const std::string& dir, std::size_t cut) {
+  void CutRun(const std::string& dir, std::size_t cut, double tracking_path_m = 0.0) {
     {
       RunFolder folder(dir);
       DriveSource source(RingDrive().scans.size());
@@ -138,10 +143,10 @@ class SessionResumeTest : public testing::TemporaryDirTest {
       SessionRunOptions options;
       options.progress = false;
       options.max_scans = cut;
-      RunSession(source, Factory(), folder, options);
+      RunSession(source, Factory(tracking_path_m), folder, options);
     }
-    std::ofstream(dir + "/iterations.jsonl", std::ios::app) << "{\"index\": " << cut
-                                                            << ", \"timestamp_s\": 1";
+    std::ofstream(dir + "/iterations.jsonl", std::ios::app)
+        << "{\"index\": " << cut << ", \"timestamp_s\": 1";
   }
 };
 
@@ -163,8 +168,41 @@ TEST_F(SessionResumeTest, AResumedRunEndsWithTheFilesOfAnUninterruptedOne) {
   EXPECT_EQ(resumed.counts.inserted, uninterrupted.counts.inserted);
   EXPECT_EQ(resumed.counts.closures_tried, uninterrupted.counts.closures_tried);
   EXPECT_EQ(resumed.counts.closures_accepted, uninterrupted.counts.closures_accepted);
-  for (const char* file : {"trajectory.tum", "trajectory-online.tum", "map.pcd", "graph.g2o",
-                           "run.json"})
+  for (const char* file :
+       {"trajectory.tum", "trajectory-online.tum", "map.pcd", "graph.g2o", "run.json"})
+    EXPECT_EQ(Bytes(dir_ + "/cut/" + file), Bytes(dir_ + "/whole/" + file)) << file;
+  EXPECT_EQ(RecordsWithoutTimings(dir_ + "/cut/iterations.jsonl"),
+            RecordsWithoutTimings(dir_ + "/whole/iterations.jsonl"));
+}
+
+// Tracking against the nodes of the last 10 m of path only: the map the scans were localised on
+// slides along (and is rendered again on resuming as it was), and the map written is the whole.
+TEST_F(SessionResumeTest, ARunTrackingItsNewestNodesResumesAndWritesTheWholeMap) {
+  const std::size_t scans = RingDrive().scans.size();
+  const double tracking_path_m = 10.0;
+  RunFolder whole(dir_ + "/whole");
+  const SessionRun uninterrupted = RunInto(whole, scans, 0, tracking_path_m);
+  ASSERT_GT(uninterrupted.counts.closures_tried, 0u) << "the drive must try loop closures";
+  const auto& session = static_cast<const Session&>(*uninterrupted.session);
+  const PointMap every_node =
+      session.loop_closer().Render(session.point_map().options(), MapExtensionOptions{});
+  EXPECT_EQ(session.point_map().live_size(), every_node.live_size());
+  std::size_t largest_tracked = 0;
+  {
+    std::ifstream in(dir_ + "/whole/iterations.jsonl");
+    for (std::string line; std::getline(in, line);)
+      largest_tracked =
+          std::max(largest_tracked, nlohmann::json::parse(line)["map_points"].get<std::size_t>());
+  }
+  EXPECT_LT(largest_tracked, every_node.live_size() * 3 / 4)
+      << "the map tracked against never held more than 20 m of the 70 m lap";
+
+  CutRun(dir_ + "/cut", scans - 40, tracking_path_m);
+  RunFolder resumed_folder(dir_ + "/cut", RunFolderOpening::kResume);
+  const SessionRun resumed = RunInto(resumed_folder, scans, 0, tracking_path_m);
+  EXPECT_EQ(resumed.counts.replayed, scans - 40);
+  EXPECT_EQ(resumed.counts.closures_accepted, uninterrupted.counts.closures_accepted);
+  for (const char* file : {"trajectory.tum", "map.pcd", "graph.g2o"})
     EXPECT_EQ(Bytes(dir_ + "/cut/" + file), Bytes(dir_ + "/whole/" + file)) << file;
   EXPECT_EQ(RecordsWithoutTimings(dir_ + "/cut/iterations.jsonl"),
             RecordsWithoutTimings(dir_ + "/whole/iterations.jsonl"));
@@ -239,9 +277,7 @@ TEST_F(SessionResumeTest, OnlyTheIncompleteLastLineIsCutOffAndABrokenRecordIsAPa
   const RecordedRun read = ReadRecordsToResume(path);
   EXPECT_EQ(read.iterations.size(), 10u);
   EXPECT_TRUE(read.partial_line);
-  {
-    RunFolder folder(dir_ + "/cut", RunFolderOpening::kResume);
-  }
+  { RunFolder folder(dir_ + "/cut", RunFolderOpening::kResume); }
   EXPECT_EQ(std::filesystem::file_size(path), read.complete_bytes);
   EXPECT_FALSE(ReadRecordsToResume(path).partial_line);
   std::ofstream(path, std::ios::app) << "{\"index\": 10}\n";

@@ -196,6 +196,7 @@ SessionRun RunSession(IterationSource& source, const SessionFactory& make_sessio
   }
   if (options.progress) std::fprintf(stderr, "\n");
   RequireReplayDone(result, run, stopped());
+  if (result.session) result.session->Finish();
   result.counts.interrupted = stopped();
   result.counts.wall_s = SecondsSince(start);
   result.counts.cpu_s = ProcessCpuSeconds() - cpu_start_s;

@@ -81,6 +81,8 @@ void LoopClosureOptions::Validate() const {
               graph.max_iterations >= 1,
           "graph: loss scale and rejection χ² >= 0, max_iterations >= 1");
   require(render_min_shift_m >= 0.0, "render_min_shift_m must be >= 0");
+  require(tracking_path_m >= 0.0 && tracking_min_nodes >= 0,
+          "tracking_path_m and tracking_min_nodes must be >= 0");
 }
 
 LoopCloser::LoopCloser(const LoopClosureOptions& options, const LaserMounting& mounting)
@@ -265,11 +267,17 @@ void LoopCloser::Solve(ClosureAttempt& attempt) {
 }
 
 PointMap LoopCloser::Render(const PointMapOptions& map_options,
-                            const MapExtensionOptions& extension) const {
+                            const MapExtensionOptions& extension, std::size_t first_node) const {
   PointMap map(map_options);
-  for (std::size_t i = 0; i < nodes_.size(); ++i)
+  for (std::size_t i = first_node; i < nodes_.size(); ++i)
     ExtendMap(map, nodes_[i].scan, mounting_.LaserPose(graph_.nodes()[i]), extension);
   return map;
+}
+
+std::size_t LoopCloser::FirstNewestNode(double within_m, std::size_t count) const {
+  std::size_t first = nodes_.size() - std::min(count, nodes_.size());
+  while (first > 0 && path_m() - nodes_[first - 1].path_m <= within_m) --first;
+  return first;
 }
 
 std::optional<Pose2D> LoopCloser::NewestNode() const {

@@ -303,12 +303,37 @@ void Session::MaybeCloseLoop(IterationRecord& record, const LaserScan& scan,
   loop_.Anchor(record.index, record.T_world_robot);
   if (!record.inserted) return;
   record.closure = loop_.MaybeClose(localisation_, point_map_.options());
-  if (!record.closure || !record.closure->rendered) return;
+  if (!record.closure || !record.closure->rendered) {
+    const LoopClosureOptions& o = options_.loop_closure;
+    if (Tracking() && loop_.FirstNewestNode(2.0 * o.tracking_path_m,
+                                            2 * static_cast<std::size_t>(o.tracking_min_nodes)) >
+                          tracked_from_node_)
+      RenderTracked();
+    return;
+  }
   // The map and the session follow the corrected nodes together; a smaller correction leaves
   // both where they were (the next node's edge takes up the difference).
-  point_map_ = loop_.Render(point_map_.options(), options_.extension);
+  RenderTracked();
   last_pose_ = *loop_.NewestNode();
   last_inserted_pose_ = last_pose_;
+}
+
+bool Session::Tracking() const {
+  return options_.loop_closure.enabled && options_.loop_closure.tracking_path_m > 0.0;
+}
+
+// The map rendered again from the nodes: all of them, or the newest when tracking.
+void Session::RenderTracked() {
+  const LoopClosureOptions& o = options_.loop_closure;
+  tracked_from_node_ =
+      Tracking()
+          ? loop_.FirstNewestNode(o.tracking_path_m, static_cast<std::size_t>(o.tracking_min_nodes))
+          : 0;
+  point_map_ = loop_.Render(point_map_.options(), options_.extension, tracked_from_node_);
+}
+
+void Session::Finish() {
+  if (Tracking()) point_map_ = loop_.Render(point_map_.options(), options_.extension);
 }
 
 std::vector<std::optional<Pose2D>> Session::CorrectedPostures() const {

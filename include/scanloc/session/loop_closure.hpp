@@ -64,6 +64,13 @@ struct LoopClosureOptions {
   PoseGraphOptions graph;
   // After a solve the map is rendered again from the nodes when one of them moved more than this.
   double render_min_shift_m = 0.02;
+  // The map the session tracks against: every node (tracking_path_m 0), or only the newest nodes:
+  // those laid within tracking_path_m of path from the newest one, and at least the newest
+  // tracking_min_nodes (a sparse log lays fewer nodes per metre). It is rendered again once it
+  // holds twice that. Old places then come back only through closures, which the graph spreads
+  // over the loop, instead of the tracker snapping onto their walls.
+  double tracking_path_m = 0.0;
+  int tracking_min_nodes = 0;
   // Throws std::invalid_argument naming the first option out of its domain.
   void Validate() const;
 };
@@ -103,8 +110,15 @@ class LoopCloser {
   std::optional<ClosureAttempt> MaybeClose(const LocalisationOptions& localisation,
                                            const PointMapOptions& map_options);
 
-  // The map rendered from every node at its current posture, carving as the session does.
-  PointMap Render(const PointMapOptions& map_options, const MapExtensionOptions& extension) const;
+  // The map rendered from the nodes from `first_node` on (every node by default) at their current
+  // postures, carving as the session does.
+  PointMap Render(const PointMapOptions& map_options, const MapExtensionOptions& extension,
+                  std::size_t first_node = 0) const;
+  // The first of the newest nodes: those that lie within `within_m` of path from the newest one,
+  // and at least the newest `count` (0 without nodes).
+  std::size_t FirstNewestNode(double within_m, std::size_t count) const;
+  // The path driven from the first node to the newest one (0 without nodes), m.
+  double path_m() const { return nodes_.empty() ? 0.0 : nodes_.back().path_m; }
   // The newest node's posture (after a solve it moves).
   std::optional<Pose2D> NewestNode() const;
   // Each anchored record's posture following its node, by record index (none before the first

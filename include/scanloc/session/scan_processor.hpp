@@ -91,6 +91,9 @@ class ScanProcessor {
   // of what the counts and the trajectory need. Throws ReplayMismatch when the replay disagrees
   // with the record, std::logic_error when the processor cannot resume.
   virtual IterationRecord Replay(const Iteration& iteration, const RecordedIteration& recorded);
+  // Called once after the last iteration, before the map is written.
+  virtual void Finish() {}
+  // The map: while processing, the one scans are localised against; after Finish, the whole map.
   virtual const PointMap& point_map() const = 0;
   virtual const LaserMounting& mounting() const = 0;
   // Postures corrected after the fact by loop closure, by record index (none for a record the

@@ -119,6 +119,9 @@ class Session : public ScanProcessor {
   // laser signature, the drift and the loop closures follow as they did (replay.hpp).
   IterationRecord Replay(const Iteration& iteration, const RecordedIteration& recorded) override;
 
+  // With loop_closure.tracking_path_m, renders the whole map from every node: until then the
+  // point map held only the nodes tracked against.
+  void Finish() override;
   const PointMap& point_map() const override { return point_map_; }
   const LineMap& line_map() const { return line_map_; }
   const LaserMounting& mounting() const override { return mounting_; }
@@ -151,12 +154,16 @@ class Session : public ScanProcessor {
   void MaybeExtend(IterationRecord& record, const LaserScan& scan);
   void MaybeCloseLoop(IterationRecord& record, const LaserScan& scan,
                       const std::optional<Eigen::Matrix3d>& covariance);
+  // With loop_closure.tracking_path_m: the session tracks against the newest nodes only.
+  bool Tracking() const;
+  void RenderTracked();
 
   SessionOptions options_;
   LocalisationOptions localisation_;
   LaserMounting mounting_;
   LineMap line_map_;
   PointMap point_map_;
+  std::size_t tracked_from_node_ = 0;  // the oldest node in the map tracked against
   LaserSignature signature_;
   DriftTracker drift_;
   LoopCloser loop_;
