@@ -88,6 +88,41 @@ TEST(LoopCloser, ComingBackToTheStartCorrectsTheDriftOfTheNodes) {
   EXPECT_LT(end_error_m, end_drift_m / 4.0);
 }
 
+TEST(LoopCloser, WithWindowSigmasTheWindowSpansTheGraphsUncertaintyAndBeyondItsMaximaNoSearch) {
+  const LineMap world = testing::RingBuilding();
+  const Lap lap = DriveRing(world);
+  LoopClosureOptions options;
+  options.enabled = true;
+  options.window_sigmas = 3.0;
+  LoopCloser closer(options, LaserMounting{});
+  std::size_t searched = 0, too_uncertain = 0;
+  bool closed = false;
+  for (std::size_t i = 0; i < lap.truth.size(); ++i) {
+    closer.AddNode(i, lap.scans[i], lap.truth[i], std::nullopt);
+    const auto attempt = closer.MaybeClose(LocalisationOptions{}, PointMapOptions{});
+    if (!attempt) continue;
+    // Along the chain only the floors (0.005 rad per node) add up; a closure kept shortens the way.
+    const double chain_rad = 0.005 * std::sqrt(double(attempt->node - attempt->old_node));
+    if (!closed) EXPECT_NEAR(attempt->chain_sigma_rad, chain_rad, 1e-9) << i;
+    if (closed) EXPECT_LT(attempt->chain_sigma_rad, chain_rad / 2.0) << i;
+    closed = closed || attempt->accepted;
+    const double needed_m = std::max(options.min_half_width_m, 3.0 * attempt->chain_sigma_m);
+    if (needed_m > options.max_half_width_m) {
+      ++too_uncertain;
+      EXPECT_EQ(attempt->reason.rfind("too uncertain", 0), 0u) << attempt->reason;
+      EXPECT_FALSE(attempt->test.has_value());
+    } else {
+      ++searched;
+      EXPECT_NEAR(attempt->window.half_width_m, needed_m, 1e-12);
+      EXPECT_TRUE(attempt->test.has_value()) << attempt->reason;
+    }
+  }
+  std::printf("%zu windows searched, %zu too uncertain\n", searched, too_uncertain);
+  EXPECT_GE(searched, 1u);
+  EXPECT_GE(too_uncertain, 1u);
+  EXPECT_TRUE(closed);
+}
+
 TEST(LoopCloser, AMapRenderedWithinAPathHoldsOnlyTheNewestNodesWalls) {
   const LineMap world = testing::RingBuilding();
   const Lap lap = DriveRing(world);

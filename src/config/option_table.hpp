@@ -262,6 +262,9 @@ void VisitLoopClosure(C& c, V& v) {
   v("loop_closure.heading_error_per_m", l.heading_error_per_m, Bounds{0, 10},
     "... plus this (rad) per metre driven since the old node ...");
   v("loop_closure.max_half_yaw_rad", l.max_half_yaw_rad, kAngle, "... at most this, rad");
+  v("loop_closure.window_sigmas", l.window_sigmas, Bounds{0, 100},
+    "closure search: with > 0, the window spans this many σ of the graph's uncertainty since the "
+    "old node instead (minima above hold, beyond the maxima nothing is searched)");
   v("loop_closure.max_sigma_m", l.max_sigma_m, Bounds{1e-6, 1e3},
     "an accepted closure's refinement pins the position to this standard deviation, m");
   v("loop_closure.distinct_m", l.distinct_m, Bounds{0, 1e3},

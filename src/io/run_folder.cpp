@@ -8,8 +8,8 @@
 #include <utility>
 
 #include "scanloc/common/atomic_file.hpp"
-#include "scanloc/common/parse_error.hpp"
 #include "scanloc/common/output_folder.hpp"
+#include "scanloc/common/parse_error.hpp"
 #include "scanloc/io/candidate_report.hpp"
 #include "scanloc/io/g2o_file.hpp"
 #include "scanloc/io/occupancy_grid_io.hpp"
@@ -45,6 +45,8 @@ nlohmann::json ClosureJson(const ClosureAttempt& c) {
                         {keys::kOldIteration, c.old_iteration},
                         {keys::kLocalNodes, c.local_nodes},
                         {keys::kPathSinceM, c.path_since_m},
+                        {keys::kChainSigmaM, c.chain_sigma_m},
+                        {keys::kChainSigmaRad, c.chain_sigma_rad},
                         {keys::kHalfWidthM, c.window.half_width_m},
                         {keys::kHalfYawRad, c.window.half_yaw_rad},
                         {keys::kLargestShiftM, c.largest_shift_m},
@@ -75,10 +77,9 @@ nlohmann::json HypothesesJson(const std::vector<Hypothesis>& hypotheses) {
 }
 
 // The files a session writes into its run folder, and those it writes at the end.
-const std::vector<std::string> kFinalFiles = {"summary.json",   "trajectory.tum",
-                                              "trajectory-online.tum", "map.pcd",
-                                              "map.pgm",        "map.yaml",
-                                              "graph.g2o"};
+const std::vector<std::string> kFinalFiles = {
+    "summary.json", "trajectory.tum", "trajectory-online.tum", "map.pcd", "map.pgm",
+    "map.yaml",     "graph.g2o"};
 const std::vector<std::string> kRunFiles = [] {
   std::vector<std::string> files = kFinalFiles;
   files.push_back("run.json");
@@ -216,8 +217,8 @@ void RunFolder::Begin(const nlohmann::json& identity) {
   try {
     stored = nlohmann::json::parse(in);
   } catch (const nlohmann::json::exception& e) {
-    throw ParseError(path, 1, std::string("expected the JSON of what the run was started with: ") +
-                                  e.what());
+    throw ParseError(
+        path, 1, std::string("expected the JSON of what the run was started with: ") + e.what());
   }
   if (stored != identity)
     throw std::runtime_error(
@@ -233,7 +234,7 @@ void RunFolder::Record(const IterationRecord& record) {
   appended_ = true;
   records_ << ToJson(record).dump() << '\n';
   records_.flush();  // a line is complete on disk before the next iteration starts
-  if (!records_)  // the failed write(2)'s errno, e.g. "No space left on device"
+  if (!records_)     // the failed write(2)'s errno, e.g. "No space left on device"
     throw std::runtime_error("cannot write " + Path("iterations.jsonl") + ": " +
                              std::strerror(errno));
   Replayed(record);

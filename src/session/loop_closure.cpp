@@ -8,6 +8,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "scanloc/graph/relative_covariance.hpp"
+
 namespace scanloc {
 namespace {
 
@@ -70,6 +72,7 @@ void LoopClosureOptions::Validate() const {
   require(
       min_half_yaw_rad >= 0.0 && max_half_yaw_rad >= min_half_yaw_rad && max_half_yaw_rad <= M_PI,
       "0 <= min_half_yaw_rad <= max_half_yaw_rad <= π");
+  require(window_sigmas >= 0.0, "window_sigmas must be >= 0");
   search.Validate();
   require(max_sigma_m > 0.0, "max_sigma_m must be positive");
   require(max_local_nodes >= min_local_nodes, "max_local_nodes must be >= min_local_nodes");
@@ -180,12 +183,10 @@ std::optional<ClosureAttempt> LoopCloser::Try(const LocalisationOptions& localis
     local.InsertScan(nodes_[i].scan, mounting_.LaserPose(graph_.nodes()[i]));
   const MapView view{nullptr, &local};
   const LaserScan& scan = nodes_[newest].scan;
-  const double grown_m = options_.translation_error_per_m * attempt.path_since_m;
-  attempt.window = {
-      mounting_.LaserPose(T_world_robot),
-      std::min(options_.max_half_width_m, options_.min_half_width_m + grown_m),
-      std::min(options_.max_half_yaw_rad,
-               options_.min_half_yaw_rad + options_.heading_error_per_m * attempt.path_since_m)};
+  if (!FitWindow(attempt)) {
+    pending_.clear();
+    return attempt;
+  }
   std::vector<Candidate> candidates{{T_world_robot, "session"}};
   const WideSearchResult search = WideSearch(view, scan, attempt.window, options_.search);
   for (std::size_t i = 0; i < search.candidates.size(); ++i)
@@ -195,6 +196,35 @@ std::optional<ClosureAttempt> LoopCloser::Try(const LocalisationOptions& localis
       Localise(view, scan, candidates, mounting_, localisation, RefinePolicy::kBestValid, 3);
   Judge(result, attempt);
   return attempt;
+}
+
+// The window searched around the current posture, from the path driven since the old node or,
+// with window_sigmas, from the graph's uncertainty of the current node relative to it. False (the
+// reason given) when the uncertainty needs a wider window than the maxima allow.
+bool LoopCloser::FitWindow(ClosureAttempt& attempt) const {
+  const std::optional<Eigen::Matrix3d> relative =
+      RelativeCovariance(graph_, attempt.old_node, attempt.node);
+  if (relative) {
+    attempt.chain_sigma_m = LargestSigmaM(*relative);
+    attempt.chain_sigma_rad = std::sqrt(std::max(0.0, (*relative)(2, 2)));
+  }
+  double half_m =
+      options_.min_half_width_m + options_.translation_error_per_m * attempt.path_since_m;
+  double half_rad = options_.min_half_yaw_rad + options_.heading_error_per_m * attempt.path_since_m;
+  if (options_.window_sigmas > 0.0) {
+    half_m = std::max(options_.min_half_width_m, options_.window_sigmas * attempt.chain_sigma_m);
+    half_rad =
+        std::max(options_.min_half_yaw_rad, options_.window_sigmas * attempt.chain_sigma_rad);
+    if (!relative || half_m > options_.max_half_width_m || half_rad > options_.max_half_yaw_rad) {
+      attempt.reason = "too uncertain: the window needs ±" + std::to_string(half_m) + " m, ±" +
+                       std::to_string(half_rad) + " rad";
+      return false;
+    }
+  }
+  attempt.window = {mounting_.LaserPose(attempt.T_world_robot_before),
+                    std::min(options_.max_half_width_m, half_m),
+                    std::min(options_.max_half_yaw_rad, half_rad)};
+  return true;
 }
 
 // Accepts the localisation's kept posture as a closure when the rules validated it and the

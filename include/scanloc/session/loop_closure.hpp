@@ -38,12 +38,17 @@ struct LoopClosureOptions {
   int attempt_every_nodes = 5;
   // The window searched around the current posture: min_half_width_m + translation_error_per_m ·
   // the path driven since the nearest old node, at most max_half_width_m; the same for heading.
+  // With window_sigmas > 0 it follows the graph instead: window_sigmas standard deviations of the
+  // current node's posture relative to the old node (RelativeCovariance: the chain's edges and
+  // the closures since), at least the minima; a window that would need more than the maxima is
+  // not searched (a look-alike inside it could not be told from the place outside).
   double min_half_width_m = 0.3;
   double translation_error_per_m = 0.02;
   double max_half_width_m = 2.0;
   double min_half_yaw_rad = 0.1;
   double heading_error_per_m = 0.005;
   double max_half_yaw_rad = 0.5;
+  double window_sigmas = 0.0;
   WideSearchOptions search;
   // The refinement of an accepted closure pins the posture to within this (its largest standard
   // deviation) and is not flagged degenerate: a corridor gives no closure along its axis. Another
@@ -83,6 +88,10 @@ struct ClosureAttempt {
   std::size_t old_iteration = 0;  // its scan's record index
   std::size_t local_nodes = 0;
   double path_since_m = 0.0;  // path driven since the old node
+  // The current node's standard deviation relative to the old node, from the graph: the largest
+  // of its position (m) and of its heading (rad).
+  double chain_sigma_m = 0.0;
+  double chain_sigma_rad = 0.0;
   SearchWindow window;
   bool accepted = false;         // validated, pinned, and kept by the graph
   std::string reason;            // why not, or "accepted"
@@ -143,6 +152,7 @@ class LoopCloser {
   std::vector<std::size_t> OldNodesNear(const Pose2D& T_world_robot, double path_m) const;
   std::optional<ClosureAttempt> Try(const LocalisationOptions& localisation,
                                     const PointMapOptions& map_options);
+  bool FitWindow(ClosureAttempt& attempt) const;
   void Judge(const LocalisationResult& result, ClosureAttempt& attempt);
   void Confirm(const Eigen::Matrix3d& covariance, ClosureAttempt& attempt);
   void Solve(ClosureAttempt& attempt);
