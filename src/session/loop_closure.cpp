@@ -17,14 +17,6 @@ double Distance(const Pose2D& a, const Pose2D& b) {
   return (a.Translation() - b.Translation()).norm();
 }
 
-// A posture covariance given in the world frame, seen from a frame at heading `yaw_rad`.
-Eigen::Matrix3d RotatedInto(const Eigen::Matrix3d& covariance_world, double yaw_rad) {
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-  rotation.topLeftCorner<2, 2>() << std::cos(yaw_rad), std::sin(yaw_rad), -std::sin(yaw_rad),
-      std::cos(yaw_rad);
-  return rotation * covariance_world * rotation.transpose();
-}
-
 // The information of an edge from a node at heading `from_yaw_rad`: the refinement's covariance
 // (when it has one) rotated into that node's frame, plus the floors.
 Eigen::Matrix3d EdgeInformation(const std::optional<Eigen::Matrix3d>& covariance_world,
@@ -32,7 +24,7 @@ Eigen::Matrix3d EdgeInformation(const std::optional<Eigen::Matrix3d>& covariance
   Eigen::Matrix3d covariance =
       Eigen::Vector3d(floor_m * floor_m, floor_m * floor_m, floor_rad * floor_rad).asDiagonal();
   if (covariance_world && covariance_world->allFinite())
-    covariance += RotatedInto(*covariance_world, from_yaw_rad);
+    covariance += RotatedOutOf(*covariance_world, -from_yaw_rad);
   Eigen::Matrix3d information = covariance.inverse();
   return 0.5 * (information + information.transpose());
 }
