@@ -51,9 +51,10 @@ std::optional<std::vector<Step>> FewestEdges(const PoseGraph& graph, std::size_t
   std::vector<Step> path;
   for (std::size_t node = to; node != from;) {
     const Step step = reached_by[node];
-    path.insert(path.begin(), step);
+    path.push_back(step);
     node = step.forward ? edges[step.edge].from : edges[step.edge].to;
   }
+  std::reverse(path.begin(), path.end());
   return path;
 }
 
