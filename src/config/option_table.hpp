@@ -283,7 +283,8 @@ void VisitLoopClosure(C& c, V& v) {
   v("loop_closure.rejection_chi2", l.graph.closure_rejection_chi2, Bounds{0, 1e12},
     "a closure whose χ² (3 dof) stays above this after a solve is set aside (0: never)");
   v("loop_closure.render_min_shift_m", l.render_min_shift_m, Bounds{0, 1e3},
-    "the map is rendered again from the nodes when a solve moved one more than this, m");
+    "the map is rendered again when a solve moved a node more than this; a closure predicted "
+    "to move less joins the graph unsolved until a larger one or the run's end, m");
   v("loop_closure.tracking_path_m", l.tracking_path_m, Bounds{0, 1e6},
     "the session tracks against the nodes laid within this path (up to twice it), 0: all, m ...");
   v("loop_closure.tracking_min_nodes", l.tracking_min_nodes, Bounds{0, 1e6},

@@ -49,6 +49,8 @@ nlohmann::json ClosureJson(const ClosureAttempt& c) {
                         {keys::kChainSigmaRad, c.chain_sigma_rad},
                         {keys::kHalfWidthM, c.window.half_width_m},
                         {keys::kHalfYawRad, c.window.half_yaw_rad},
+                        {keys::kPredictedShiftM, c.predicted_shift_m},
+                        {keys::kSolveDeferred, c.solve_deferred},
                         {keys::kLargestShiftM, c.largest_shift_m},
                         {keys::kRendered, c.rendered},
                         {keys::kTimeS, c.time_s}};

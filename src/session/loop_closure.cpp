@@ -47,6 +47,24 @@ double LargestSigmaM(const Eigen::Matrix3d& covariance) {
   return std::sqrt(std::max(0.0, eigen.eigenvalues().maxCoeff()));
 }
 
+// What a solve would do with one closure edge, to first order: the correction of the edge's
+// relative posture (the chain's covariance against the closure's, the Kalman gain) and the
+// closure's squared Mahalanobis innovation. Nothing when no active path joins its nodes.
+struct PredictedCorrection {
+  Eigen::Vector3d correction;  // x m, y m, yaw rad in the old node's frame
+  double chi2 = 0.0;
+};
+std::optional<PredictedCorrection> Predict(const PoseGraph& graph, const PoseGraphEdge& edge) {
+  const std::optional<Eigen::Matrix3d> chain = RelativeCovariance(graph, edge.from, edge.to);
+  if (!chain) return std::nullopt;
+  const Pose2D now = Between(graph.nodes()[edge.from], graph.nodes()[edge.to]);
+  const Eigen::Vector3d innovation(edge.T_from_to.x_m - now.x_m, edge.T_from_to.y_m - now.y_m,
+                                   NormalizeAngle(edge.T_from_to.yaw_rad - now.yaw_rad));
+  const Eigen::Matrix3d total_inverse = (*chain + edge.information.inverse()).inverse();
+  return PredictedCorrection{*chain * total_inverse * innovation,
+                             innovation.dot(total_inverse * innovation)};
+}
+
 }  // namespace
 
 void LoopClosureOptions::Validate() const {
@@ -273,10 +291,35 @@ void LoopCloser::Confirm(const Eigen::Matrix3d& covariance, ClosureAttempt& atte
   Solve(attempt);
 }
 
-// Adds the confirmed closures' edges and solves the graph.
+// Whether the confirmed closures may join the graph unsolved: each one's predicted correction
+// moves its node by less than render_min_shift_m, and the graph explains it (a closure it might
+// set aside is solved at once). Records the largest predicted shift.
+bool LoopCloser::SolveLater(ClosureAttempt& attempt) const {
+  bool later = true;
+  for (const PoseGraphEdge& pending : pending_) {
+    const std::optional<PredictedCorrection> predicted = Predict(graph_, pending);
+    if (!predicted) return false;
+    const double shift_m = predicted->correction.head<2>().norm();
+    attempt.predicted_shift_m = std::max(attempt.predicted_shift_m, shift_m);
+    const double chi2_limit = options_.graph.closure_rejection_chi2;
+    later = later && shift_m <= options_.render_min_shift_m &&
+            (chi2_limit <= 0.0 || predicted->chi2 <= chi2_limit);
+  }
+  return later;
+}
+
+// Adds the confirmed closures' edges and solves the graph, unless the solve can wait.
 void LoopCloser::Solve(ClosureAttempt& attempt) {
+  attempt.solve_deferred = SolveLater(attempt);
   for (const PoseGraphEdge& pending : pending_) graph_.AddEdge(pending);
   pending_.clear();
+  if (attempt.solve_deferred) {
+    unsolved_ = true;
+    attempt.accepted = true;
+    attempt.reason = "accepted";
+    return;
+  }
+  unsolved_ = false;
   const std::size_t edge = graph_.edges().size() - 1;
   const std::vector<Pose2D> before = graph_.nodes();
   graph_.Optimise(options_.graph);
@@ -286,6 +329,17 @@ void LoopCloser::Solve(ClosureAttempt& attempt) {
   attempt.accepted = graph_.edges()[edge].active;
   attempt.reason = attempt.accepted ? "accepted" : "set aside by the graph";
   attempt.rendered = attempt.largest_shift_m > options_.render_min_shift_m;
+}
+
+bool LoopCloser::Finish() {
+  if (!unsolved_) return false;
+  unsolved_ = false;
+  const std::vector<Pose2D> before = graph_.nodes();
+  graph_.Optimise(options_.graph);
+  double largest_m = 0.0;
+  for (std::size_t i = 0; i < before.size(); ++i)
+    largest_m = std::max(largest_m, Distance(before[i], graph_.nodes()[i]));
+  return largest_m > options_.render_min_shift_m;
 }
 
 PointMap LoopCloser::Render(const PointMapOptions& map_options,

@@ -332,8 +332,12 @@ void Session::RenderTracked() {
   point_map_ = loop_.Render(point_map_.options(), options_.extension, tracked_from_node_);
 }
 
+// Closures that joined the graph unsolved are solved; the map is rendered from every node when
+// tracking kept only the newest, or when that solve moved a node.
 void Session::Finish() {
-  if (Tracking()) point_map_ = loop_.Render(point_map_.options(), options_.extension);
+  if (!options_.loop_closure.enabled) return;
+  const bool moved = loop_.Finish();
+  if (Tracking() || moved) point_map_ = loop_.Render(point_map_.options(), options_.extension);
 }
 
 std::vector<std::optional<Pose2D>> Session::CorrectedPostures() const {

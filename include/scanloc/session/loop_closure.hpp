@@ -68,6 +68,10 @@ struct LoopClosureOptions {
   double sigma_floor_rad = 0.005;
   PoseGraphOptions graph;
   // After a solve the map is rendered again from the nodes when one of them moved more than this.
+  // A confirmed closure predicted to move its node by less (the first-order correction: the
+  // chain's covariance weighed against the closure's) and that the graph can explain (χ² within
+  // graph.closure_rejection_chi2) joins the graph unsolved: the next larger closure's solve, or
+  // Finish, takes it in.
   double render_min_shift_m = 0.02;
   // The map the session tracks against: every node (tracking_path_m 0), or only the newest nodes:
   // those laid within tracking_path_m of path from the newest one, and at least the newest
@@ -99,8 +103,12 @@ struct ClosureAttempt {
   Pose2D T_world_robot_matched;  // against the old nodes (when something was refined)
   Pose2D T_old_robot;            // the same seen from the old node: the closure's measurement
   std::optional<LikelihoodTestResult> test;  // of the kept refinement
-  double largest_shift_m = 0.0;              // the solve's largest node displacement
-  bool rendered = false;                     // the map was rendered again
+  // The largest node shift the closures confirmed here would bring, predicted before solving, m,
+  // and whether the solve was left for later because it is small.
+  double predicted_shift_m = 0.0;
+  bool solve_deferred = false;
+  double largest_shift_m = 0.0;  // the solve's largest node displacement
+  bool rendered = false;         // the map was rendered again
   double time_s = 0.0;
 };
 
@@ -118,6 +126,9 @@ class LoopCloser {
   // and the caller renders the map again when the attempt says so.
   std::optional<ClosureAttempt> MaybeClose(const LocalisationOptions& localisation,
                                            const PointMapOptions& map_options);
+  // Solves the graph when closures joined it unsolved; true when that moved a node more than
+  // render_min_shift_m (the map is then worth rendering again).
+  bool Finish();
 
   // The map rendered from the nodes from `first_node` on (every node by default) at their current
   // postures, carving as the session does.
@@ -155,6 +166,7 @@ class LoopCloser {
   bool FitWindow(ClosureAttempt& attempt) const;
   void Judge(const LocalisationResult& result, ClosureAttempt& attempt);
   void Confirm(const Eigen::Matrix3d& covariance, ClosureAttempt& attempt);
+  bool SolveLater(ClosureAttempt& attempt) const;
   void Solve(ClosureAttempt& attempt);
 
   LoopClosureOptions options_;
@@ -167,6 +179,7 @@ class LoopCloser {
   // Closures found but not yet confirmed: their edges and the correction they agree on.
   std::vector<PoseGraphEdge> pending_;
   Pose2D pending_correction_;
+  bool unsolved_ = false;  // closures joined the graph since its last solve
 };
 
 }  // namespace scanloc
