@@ -26,18 +26,26 @@ void LikelihoodFieldOptions::Validate() const {
 
 LikelihoodField::LikelihoodField(const std::vector<Eigen::Vector2d>& points,
                                  const Eigen::Vector2d& min_world, const Eigen::Vector2d& max_world,
-                                 const LikelihoodFieldOptions& options)
-    : origin_world_(min_world), resolution_m_(options.resolution_m) {
+                                 const LikelihoodFieldOptions& options) {
+  Rebuild(points, min_world, max_world, options);
+}
+
+void LikelihoodField::Rebuild(const std::vector<Eigen::Vector2d>& points,
+                              const Eigen::Vector2d& min_world, const Eigen::Vector2d& max_world,
+                              const LikelihoodFieldOptions& options) {
   options.Validate();
   if (!(max_world.array() >= min_world.array()).all() || !min_world.allFinite() ||
       !max_world.allFinite())
     throw std::invalid_argument("LikelihoodField: the box's corners must be finite and ordered");
-  const Eigen::Vector2d cells = (max_world - min_world) / resolution_m_;
+  const Eigen::Vector2d cells = (max_world - min_world) / options.resolution_m;
   if ((cells.x() + 1.0) * (cells.y() + 1.0) > kMaxCells)
     throw std::invalid_argument("LikelihoodField: the box needs more than 6.4e7 cells");
+  origin_world_ = min_world;
+  resolution_m_ = options.resolution_m;
   width_ = static_cast<int>(std::ceil(cells.x())) + 1;
   height_ = static_cast<int>(std::ceil(cells.y())) + 1;
-  levels_.assign(1, std::vector<float>(static_cast<std::size_t>(width_) * height_, 0.0f));
+  levels_.resize(static_cast<std::size_t>(options.levels));
+  levels_[0].assign(static_cast<std::size_t>(width_) * height_, 0.0f);
   for (const Eigen::Vector2d& p : points) Splat(p, options.sigma_m);
   for (int h = 1; h < options.levels; ++h) BuildLevel(h);
 }
@@ -67,17 +75,24 @@ void LikelihoodField::Splat(const Eigen::Vector2d& point, double sigma_m) {
 }
 
 // Level h's cell (x, y) = the maximum of level h−1 over (x, y), (x+s, y), (x, y+s), (x+s, y+s),
-// s = 2^(h−1): the maximum over the 2^h × 2^h block of the field starting at (x, y).
+// s = 2^(h−1): the maximum over the 2^h × 2^h block of the field starting at (x, y). Taken along
+// rows, then along columns; cells beyond the grid hold 0 and every value is at least 0, so a
+// neighbour beyond it leaves the cell's own value.
 void LikelihoodField::BuildLevel(int level) {
-  const int step = 1 << (level - 1);
-  const int previous = level - 1;
-  std::vector<float> values(levels_[previous].size());
-  for (int iy = 0; iy < height_; ++iy)
-    for (int ix = 0; ix < width_; ++ix)
-      values[static_cast<std::size_t>(iy) * width_ + ix] =
-          std::max({At(previous, ix, iy), At(previous, ix + step, iy), At(previous, ix, iy + step),
-                    At(previous, ix + step, iy + step)});
-  levels_.push_back(std::move(values));
+  const std::size_t step = std::size_t{1} << (level - 1);
+  const std::size_t width = static_cast<std::size_t>(width_);
+  const std::size_t height = static_cast<std::size_t>(height_);
+  std::vector<float>& values = levels_[static_cast<std::size_t>(level)];
+  values = levels_[static_cast<std::size_t>(level) - 1];
+  for (std::size_t iy = 0; iy < height; ++iy) {
+    float* row = values.data() + iy * width;
+    for (std::size_t ix = 0; ix + step < width; ++ix) row[ix] = std::max(row[ix], row[ix + step]);
+  }
+  for (std::size_t iy = 0; iy + step < height; ++iy) {
+    float* row = values.data() + iy * width;
+    const float* below = row + step * width;
+    for (std::size_t ix = 0; ix < width; ++ix) row[ix] = std::max(row[ix], below[ix]);
+  }
 }
 
 }  // namespace scanloc

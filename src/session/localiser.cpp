@@ -155,7 +155,8 @@ void Localiser::Search(IterationRecord& record, const Iteration& iteration) {
   last_search_odometry_ = iteration.odometry;
   for (Hypothesis& h : hypotheses_) ++h.searches;
   record.search_window = WholeMapWindow(View());
-  record.search = WideSearch(View(), scan, *record.search_window, config_.localiser.search);
+  record.search =
+      WideSearch(View(), scan, *record.search_window, config_.localiser.search, &search_field_);
   std::vector<Candidate> candidates;
   for (std::size_t i = 0; i < record.search->candidates.size(); ++i)
     candidates.push_back({mounting_.RobotPose(record.search->candidates[i].T_world_laser),
@@ -293,7 +294,8 @@ std::string Localiser::OutCosted(const Hypothesis& h) const {
     const CostComparison c = CompareCosts(h, other, o.confirm_after, o.min_cost_excess_ratio);
     if (!c.decided) continue;
     char text[160];
-    std::snprintf(text, sizeof text, "cost %.0f %% more than %s at the last %d scans (paired t %.1f)",
+    std::snprintf(text, sizeof text,
+                  "cost %.0f %% more than %s at the last %d scans (paired t %.1f)",
                   100.0 * c.mean_excess / c.cheaper_mean, Describe(other.T_world_robot).c_str(),
                   c.scans, c.t);
     return text;

@@ -198,7 +198,8 @@ std::optional<ClosureAttempt> LoopCloser::Try(const LocalisationOptions& localis
     return attempt;
   }
   std::vector<Candidate> candidates{{T_world_robot, "session"}};
-  const WideSearchResult search = WideSearch(view, scan, attempt.window, options_.search);
+  const WideSearchResult search =
+      WideSearch(view, scan, attempt.window, options_.search, &search_field_);
   for (std::size_t i = 0; i < search.candidates.size(); ++i)
     candidates.push_back(
         {mounting_.RobotPose(search.candidates[i].T_world_laser), "search" + std::to_string(i)});

@@ -50,13 +50,14 @@ std::vector<Eigen::Vector2d> MapPoints(const MapView& map, const Eigen::Vector2d
   return points;
 }
 
-// The field over the box of `points` (the cells a splat reaches), within centre ± reach, its
+// Builds in `field` the field over the box of `points` (the cells a splat reaches), within
+// centre ± reach, its
 // corner a whole number of cells from centre − reach (so that a posture's cells do not depend on
 // the map's extent), and widened below by a top-level block: a block starting left of or below
 // the points then still holds the maximum of the cells it covers (the bound stays exact). Cells
 // beyond hold 0, as LikelihoodField::At says outside the grid.
-LikelihoodField FieldOver(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& centre,
-                          double reach, const LikelihoodFieldOptions& options) {
+void FieldOver(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& centre,
+               double reach, const LikelihoodFieldOptions& options, LikelihoodField& field) {
   const double res = options.resolution_m;
   const Eigen::Vector2d corner = centre - Eigen::Vector2d(reach, reach);
   const Eigen::Vector2d far = centre + Eigen::Vector2d(reach, reach);
@@ -70,7 +71,7 @@ LikelihoodField FieldOver(const std::vector<Eigen::Vector2d>& points, const Eige
   Eigen::Vector2d min_world = (low.array() - pad).max(corner.array()).matrix();
   min_world = corner + res * ((min_world - corner) / res).array().floor().matrix();
   const Eigen::Vector2d max_world = (high.array() + margin).min(far.array()).matrix();
-  return LikelihoodField(points, min_world, max_world.cwiseMax(min_world), options);
+  field.Rebuild(points, min_world, max_world.cwiseMax(min_world), options);
 }
 
 // The headings searched: offsets first…last times step_rad from the window's heading. The step
@@ -225,7 +226,7 @@ void WideSearchOptions::Validate() const {
 }
 
 WideSearchResult WideSearch(const MapView& map, const LaserScan& scan, const SearchWindow& window,
-                            const WideSearchOptions& options) {
+                            const WideSearchOptions& options, LikelihoodField* storage) {
   options.Validate();
   if (!(window.half_width_m >= 0.0) || !(window.half_yaw_rad >= 0.0) ||
       !std::isfinite(window.half_width_m) || !std::isfinite(window.half_yaw_rad))
@@ -241,7 +242,9 @@ WideSearchResult WideSearch(const MapView& map, const LaserScan& scan, const Sea
       endpoints.empty() || map.empty() ? std::vector<Eigen::Vector2d>{}
                                        : MapPoints(map, centre, reach * std::sqrt(2.0), 0.5 * res);
   if (points.empty()) return result;
-  const LikelihoodField field = FieldOver(points, centre, reach, options.field);
+  LikelihoodField own;
+  LikelihoodField& field = storage != nullptr ? *storage : own;
+  FieldOver(points, centre, reach, options.field, field);
   const Headings headings = SearchHeadings(window.half_yaw_rad, res, max_range_m, options);
   const double step_rad = headings.step_rad;
   std::vector<std::vector<Eigen::Vector2i>> cells;

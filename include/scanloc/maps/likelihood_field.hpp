@@ -22,6 +22,13 @@ class LikelihoodField {
   // The field of `points` over the square cells covering [min_world, max_world].
   LikelihoodField(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& min_world,
                   const Eigen::Vector2d& max_world, const LikelihoodFieldOptions& options = {});
+  // An empty field: no cell, 0 everywhere, until Rebuild.
+  LikelihoodField() = default;
+  // The field of other points over another box, in the storage this one holds: a caller that
+  // builds many fields of like size (a search per closure attempt) reuses the same pages
+  // instead of asking the system for fresh ones each time. Throws as the constructor does.
+  void Rebuild(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& min_world,
+               const Eigen::Vector2d& max_world, const LikelihoodFieldOptions& options = {});
 
   // Level h's value of cell (ix, iy); 0 outside the grid.
   float At(int level, int ix, int iy) const {
@@ -39,8 +46,8 @@ class LikelihoodField {
   void Splat(const Eigen::Vector2d& point, double sigma_m);
   void BuildLevel(int level);
 
-  Eigen::Vector2d origin_world_;  // the corner of cell (0, 0)
-  double resolution_m_;
+  Eigen::Vector2d origin_world_ = Eigen::Vector2d::Zero();  // the corner of cell (0, 0)
+  double resolution_m_ = 1.0;
   int width_ = 0, height_ = 0;
   std::vector<std::vector<float>> levels_;
 };

@@ -5,10 +5,10 @@
 // the posture candidates that comply to the rules 1, 2, 3 and confirm or discard them as the
 // system progresses"). Each is carried with the odometry and localised again at every scan; one
 // the rules stop validating is discarded, and so is one that cost more than another at the same
-// scans beyond chance (hypothesis_evidence.hpp). The posture is confirmed when a single hypothesis is
-// left and the rules validated it confirm_after scans in a row; while several are held the output
-// says "ambiguous" and lists them. A confirmed posture that the rules stop validating (a robot
-// carried elsewhere) is lost: it is held on as one hypothesis among those a new search finds.
+// scans beyond chance (hypothesis_evidence.hpp). The posture is confirmed when a single hypothesis
+// is left and the rules validated it confirm_after scans in a row; while several are held the
+// output says "ambiguous" and lists them. A confirmed posture that the rules stop validating (a
+// robot carried elsewhere) is lost: it is held on as one hypothesis among those a new search finds.
 
 #include <optional>
 #include <string>
@@ -93,7 +93,8 @@ class Localiser : public ScanProcessor {
   std::optional<Pose2D> last_odometry_;
   std::optional<Pose2D> last_localised_odometry_;
   std::optional<Pose2D> last_search_odometry_;
-  bool search_due_ = false;  // a confirmed posture was just lost
+  bool search_due_ = false;       // a confirmed posture was just lost
+  LikelihoodField search_field_;  // the storage of every global search's field
 };
 
 }  // namespace scanloc

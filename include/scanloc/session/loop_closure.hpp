@@ -179,7 +179,8 @@ class LoopCloser {
   // Closures found but not yet confirmed: their edges and the correction they agree on.
   std::vector<PoseGraphEdge> pending_;
   Pose2D pending_correction_;
-  bool unsolved_ = false;  // closures joined the graph since its last solve
+  bool unsolved_ = false;         // closures joined the graph since its last solve
+  LikelihoodField search_field_;  // the storage of every attempt's search field
 };
 
 }  // namespace scanloc

@@ -52,9 +52,11 @@ struct WideSearchResult {
 
 // Searches `window` for postures of `scan` against `map` (the line map sampled at half the
 // field's resolution, and the point map's points). An empty map or a scan without a valid range
-// gives no candidate.
+// gives no candidate. With `storage`, the field is built there (its former contents replaced):
+// a caller searching again and again keeps one and saves building tens of megabytes afresh.
 WideSearchResult WideSearch(const MapView& map, const LaserScan& scan, const SearchWindow& window,
-                            const WideSearchOptions& options = {});
+                            const WideSearchOptions& options = {},
+                            LikelihoodField* storage = nullptr);
 
 // The window over a whole map, every heading: the laser anywhere in the square about the box of
 // its points and segments (a global search). Nullopt for an empty map.
