@@ -38,6 +38,12 @@ Lap DriveRing(const LineMap& world) {
   return lap;
 }
 
+LoopClosureOptions Enabled() {
+  LoopClosureOptions options;
+  options.enabled = true;
+  return options;
+}
+
 TEST(LoopCloser, ComingBackToTheStartCorrectsTheDriftOfTheNodes) {
   const LineMap world = testing::RingBuilding();
   const Lap lap = DriveRing(world);
@@ -50,8 +56,7 @@ TEST(LoopCloser, ComingBackToTheStartCorrectsTheDriftOfTheNodes) {
     drifted.push_back(drifted.back() *
                       Pose2D(1.005 * step.x_m, 1.005 * step.y_m, step.yaw_rad * 1.013));
   }
-  LoopClosureOptions options;
-  options.enabled = true;
+  LoopClosureOptions options = Enabled();
   LoopCloser closer(options, LaserMounting{});
   LocalisationOptions localisation;
   std::size_t accepted = 0;
@@ -68,6 +73,7 @@ TEST(LoopCloser, ComingBackToTheStartCorrectsTheDriftOfTheNodes) {
       EXPECT_FALSE(attempt->solve_deferred);
       EXPECT_GT(attempt->predicted_shift_m, 10.0 * options.render_min_shift_m);
       EXPECT_GT(attempt->largest_shift_m, 10.0 * options.render_min_shift_m);
+      EXPECT_GE(attempt->solve_iterations, 1);
     }
     accepted += attempt && attempt->accepted;
     if (attempt && attempt->accepted) estimate = *closer.NewestNode();
@@ -97,10 +103,8 @@ TEST(LoopCloser, ComingBackToTheStartCorrectsTheDriftOfTheNodes) {
 }
 
 TEST(LoopCloser, ClosuresThatWouldMoveTheMapLessThanTheRenderShiftJoinUnsolvedUntilFinish) {
-  const LineMap world = testing::RingBuilding();
-  const Lap lap = DriveRing(world);
-  LoopClosureOptions options;
-  options.enabled = true;
+  const Lap lap = DriveRing(testing::RingBuilding());
+  const LoopClosureOptions options = Enabled();
   LoopCloser closer(options, LaserMounting{});
   std::size_t accepted = 0;
   // Laid at the true postures: a closure has only the matcher's millimetres to correct.
@@ -112,6 +116,7 @@ TEST(LoopCloser, ClosuresThatWouldMoveTheMapLessThanTheRenderShiftJoinUnsolvedUn
     EXPECT_TRUE(attempt->solve_deferred) << i << ": predicted " << attempt->predicted_shift_m;
     EXPECT_LE(attempt->predicted_shift_m, options.render_min_shift_m);
     EXPECT_EQ(attempt->largest_shift_m, 0.0);
+    EXPECT_EQ(attempt->solve_iterations, 0);
   }
   ASSERT_GE(accepted, 1u);
   std::size_t closures = 0;
@@ -135,8 +140,7 @@ TEST(LoopCloser, ClosuresThatWouldMoveTheMapLessThanTheRenderShiftJoinUnsolvedUn
 TEST(LoopCloser, WithWindowSigmasTheWindowSpansTheGraphsUncertaintyAndBeyondItsMaximaNoSearch) {
   const LineMap world = testing::RingBuilding();
   const Lap lap = DriveRing(world);
-  LoopClosureOptions options;
-  options.enabled = true;
+  LoopClosureOptions options = Enabled();
   options.window_sigmas = 3.0;
   LoopCloser closer(options, LaserMounting{});
   std::size_t searched = 0, too_uncertain = 0;
@@ -173,8 +177,7 @@ TEST(LoopCloser, WithWindowSigmasTheWindowSpansTheGraphsUncertaintyAndBeyondItsM
 TEST(LoopCloser, AMapRenderedWithinAPathHoldsOnlyTheNewestNodesWalls) {
   const LineMap world = testing::RingBuilding();
   const Lap lap = DriveRing(world);
-  LoopClosureOptions options;
-  options.enabled = true;
+  LoopClosureOptions options = Enabled();
   LoopCloser closer(options, LaserMounting{});
   for (std::size_t i = 0; i < lap.truth.size(); ++i)
     closer.AddNode(i, lap.scans[i], lap.truth[i], std::nullopt);

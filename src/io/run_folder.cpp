@@ -52,6 +52,7 @@ nlohmann::json ClosureJson(const ClosureAttempt& c) {
                         {keys::kPredictedShiftM, c.predicted_shift_m},
                         {keys::kSolveDeferred, c.solve_deferred},
                         {keys::kLargestShiftM, c.largest_shift_m},
+                        {keys::kSolveIterations, c.solve_iterations},
                         {keys::kRendered, c.rendered},
                         {keys::kTimeS, c.time_s}};
   if (c.test) {  // something was refined: the posture matched and the closure's measurement

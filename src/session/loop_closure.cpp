@@ -320,27 +320,30 @@ void LoopCloser::Solve(ClosureAttempt& attempt) {
     attempt.reason = "accepted";
     return;
   }
-  unsolved_ = false;
   const std::size_t edge = graph_.edges().size() - 1;
-  const std::vector<Pose2D> before = graph_.nodes();
-  graph_.Optimise(options_.graph);
-  for (std::size_t i = 0; i < before.size(); ++i)
-    attempt.largest_shift_m =
-        std::max(attempt.largest_shift_m, Distance(before[i], graph_.nodes()[i]));
+  const PoseGraphSummary summary = SolveGraph(attempt.largest_shift_m);
+  attempt.solve_iterations = summary.iterations;
   attempt.accepted = graph_.edges()[edge].active;
   attempt.reason = attempt.accepted ? "accepted" : "set aside by the graph";
   attempt.rendered = attempt.largest_shift_m > options_.render_min_shift_m;
 }
 
-bool LoopCloser::Finish() {
-  if (!unsolved_) return false;
+// Solves the graph; `largest_shift_m` becomes the largest node displacement it made.
+PoseGraphSummary LoopCloser::SolveGraph(double& largest_shift_m) {
   unsolved_ = false;
   const std::vector<Pose2D> before = graph_.nodes();
-  graph_.Optimise(options_.graph);
-  double largest_m = 0.0;
+  const PoseGraphSummary summary = graph_.Optimise(options_.graph);
+  largest_shift_m = 0.0;
   for (std::size_t i = 0; i < before.size(); ++i)
-    largest_m = std::max(largest_m, Distance(before[i], graph_.nodes()[i]));
-  return largest_m > options_.render_min_shift_m;
+    largest_shift_m = std::max(largest_shift_m, Distance(before[i], graph_.nodes()[i]));
+  return summary;
+}
+
+bool LoopCloser::Finish() {
+  if (!unsolved_) return false;
+  double largest_shift_m = 0.0;
+  SolveGraph(largest_shift_m);
+  return largest_shift_m > options_.render_min_shift_m;
 }
 
 PointMap LoopCloser::Render(const PointMapOptions& map_options,

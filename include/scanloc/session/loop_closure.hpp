@@ -108,6 +108,7 @@ struct ClosureAttempt {
   double predicted_shift_m = 0.0;
   bool solve_deferred = false;
   double largest_shift_m = 0.0;  // the solve's largest node displacement
+  int solve_iterations = 0;      // the solve's iterations, over all its rounds (0: no solve)
   bool rendered = false;         // the map was rendered again
   double time_s = 0.0;
 };
@@ -168,6 +169,7 @@ class LoopCloser {
   void Confirm(const Eigen::Matrix3d& covariance, ClosureAttempt& attempt);
   bool SolveLater(ClosureAttempt& attempt) const;
   void Solve(ClosureAttempt& attempt);
+  PoseGraphSummary SolveGraph(double& largest_shift_m);
 
   LoopClosureOptions options_;
   LaserMounting mounting_;
