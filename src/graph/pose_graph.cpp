@@ -18,17 +18,21 @@ T WrapAngle(const T& angle_rad) {
   return angle_rad - two_pi * ceres::floor((angle_rad + T(M_PI)) / two_pi);
 }
 
-// Yaw lives on the circle: a step is added and the sum wrapped, so the solver never sees the
-// jump at ±π.
-struct YawPlus {
+// A node's posture (x, y, yaw) as one parameter block: a step is added and the yaw wrapped, so the
+// solver never sees the jump at ±π. One block per node keeps the normal equations' blocks 3 × 3.
+struct PosturePlus {
   template <typename T>
-  bool Plus(const T* yaw, const T* delta, T* result) const {
-    *result = WrapAngle(*yaw + *delta);
+  bool Plus(const T* posture, const T* delta, T* result) const {
+    result[0] = posture[0] + delta[0];
+    result[1] = posture[1] + delta[1];
+    result[2] = WrapAngle(posture[2] + delta[2]);
     return true;
   }
   template <typename T>
   bool Minus(const T* to, const T* from, T* result) const {
-    *result = WrapAngle(*to - *from);
+    result[0] = to[0] - from[0];
+    result[1] = to[1] - from[1];
+    result[2] = WrapAngle(to[2] - from[2]);
     return true;
   }
 };
@@ -41,13 +45,12 @@ class RelativePostureError {
       : measured_(measured), sqrt_information_(sqrt_information) {}
 
   template <typename T>
-  bool operator()(const T* from_xy, const T* from_yaw, const T* to_xy, const T* to_yaw,
-                  T* residual) const {
-    const T c = ceres::cos(*from_yaw), s = ceres::sin(*from_yaw);
-    const T dx = to_xy[0] - from_xy[0], dy = to_xy[1] - from_xy[1];
+  bool operator()(const T* from, const T* to, T* residual) const {
+    const T c = ceres::cos(from[2]), s = ceres::sin(from[2]);
+    const T dx = to[0] - from[0], dy = to[1] - from[1];
     Eigen::Matrix<T, 3, 1> error;
     error << c * dx + s * dy - T(measured_.x_m), -s * dx + c * dy - T(measured_.y_m),
-        WrapAngle(*to_yaw - *from_yaw - T(measured_.yaw_rad));
+        WrapAngle(to[2] - from[2] - T(measured_.yaw_rad));
     Eigen::Map<Eigen::Matrix<T, 3, 1>> whitened(residual);
     whitened = sqrt_information_.template cast<T>() * error;
     return true;
@@ -149,33 +152,36 @@ PoseGraphSummary PoseGraph::Optimise(const PoseGraphOptions& options) {
 }
 
 void PoseGraph::Solve(const PoseGraphOptions& options, PoseGraphSummary& summary) {
-  std::vector<double> xy(2 * nodes_.size()), yaw(nodes_.size());
+  std::vector<double> postures(3 * nodes_.size());
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
-    xy[2 * i] = nodes_[i].x_m;
-    xy[2 * i + 1] = nodes_[i].y_m;
-    yaw[i] = nodes_[i].yaw_rad;
+    postures[3 * i] = nodes_[i].x_m;
+    postures[3 * i + 1] = nodes_[i].y_m;
+    postures[3 * i + 2] = nodes_[i].yaw_rad;
   }
-  ceres::Problem problem;
+  // One manifold and one loss shared by every block: the problem must not delete them.
+  ceres::AutoDiffManifold<PosturePlus, 3, 3> manifold;
+  ceres::HuberLoss closure_loss(options.closure_loss_scale > 0.0 ? options.closure_loss_scale
+                                                                 : 1.0);
+  ceres::Problem::Options problem_options;
+  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(problem_options);
   for (const PoseGraphEdge& edge : edges_) {
     if (!edge.active) continue;
     Eigen::Matrix3d root;
     SquareRootInformation(edge.information, root);
-    auto* cost = new ceres::AutoDiffCostFunction<RelativePostureError, 3, 2, 1, 2, 1>(
+    auto* cost = new ceres::AutoDiffCostFunction<RelativePostureError, 3, 3, 3>(
         new RelativePostureError(edge.T_from_to, root));
-    ceres::LossFunction* loss = nullptr;
-    if (edge.kind == EdgeKind::kClosure && options.closure_loss_scale > 0.0)
-      loss = new ceres::HuberLoss(options.closure_loss_scale);
-    problem.AddResidualBlock(cost, loss, &xy[2 * edge.from], &yaw[edge.from], &xy[2 * edge.to],
-                             &yaw[edge.to]);
+    const bool robust = edge.kind == EdgeKind::kClosure && options.closure_loss_scale > 0.0;
+    problem.AddResidualBlock(cost, robust ? &closure_loss : nullptr, &postures[3 * edge.from],
+                             &postures[3 * edge.to]);
   }
   for (std::size_t i = 0; i < nodes_.size(); ++i)
-    if (problem.HasParameterBlock(&yaw[i]))
-      problem.SetManifold(&yaw[i], new ceres::AutoDiffManifold<YawPlus, 1, 1>);
+    if (problem.HasParameterBlock(&postures[3 * i]))
+      problem.SetManifold(&postures[3 * i], &manifold);
   const std::size_t gauge = options.fixed_node;
-  if (problem.HasParameterBlock(&xy[2 * gauge])) {
-    problem.SetParameterBlockConstant(&xy[2 * gauge]);
-    problem.SetParameterBlockConstant(&yaw[gauge]);
-  }
+  if (problem.HasParameterBlock(&postures[3 * gauge]))
+    problem.SetParameterBlockConstant(&postures[3 * gauge]);
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   solver.max_num_iterations = options.max_iterations;
@@ -188,7 +194,7 @@ void PoseGraph::Solve(const PoseGraphOptions& options, PoseGraphSummary& summary
   summary.iterations += static_cast<int>(result.iterations.size());
   summary.final_cost = result.final_cost;
   for (std::size_t i = 0; i < nodes_.size(); ++i)
-    nodes_[i] = Pose2D(xy[2 * i], xy[2 * i + 1], yaw[i]).Normalized();
+    nodes_[i] = Pose2D(postures[3 * i], postures[3 * i + 1], postures[3 * i + 2]).Normalized();
 }
 
 }  // namespace scanloc
