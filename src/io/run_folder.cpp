@@ -47,7 +47,6 @@ nlohmann::json ClosureJson(const ClosureAttempt& c) {
                         {keys::kPathSinceM, c.path_since_m},
                         {keys::kChainSigmaM, c.chain_sigma_m},
                         {keys::kChainSigmaRad, c.chain_sigma_rad},
-                        {keys::kConfirming, c.confirming},
                         {keys::kHalfWidthM, c.window.half_width_m},
                         {keys::kHalfYawRad, c.window.half_yaw_rad},
                         {keys::kPredictedShiftM, c.predicted_shift_m},

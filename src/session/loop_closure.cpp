@@ -173,68 +173,40 @@ std::optional<ClosureAttempt> LoopCloser::MaybeClose(const LocalisationOptions& 
   return attempt;
 }
 
-// Localises the newest node's scan against a map of the old nodes near it (while a closure is
-// pending, the map its first attempt was matched on).
+// Localises the newest node's scan against a map of the old nodes near it.
 std::optional<ClosureAttempt> LoopCloser::Try(const LocalisationOptions& localisation,
                                               const PointMapOptions& map_options) {
-  // The attempt that would confirm the closure searches its whole window again: a look-alike
-  // place the first attempt's search could not tell apart has a second chance to show.
-  const std::size_t due = static_cast<std::size_t>(options_.confirm_after);
-  const bool confirming =
-      !pending_.empty() && pending_.size() + 1 < due && !options_.confirm_by_search;
-  if (!confirming && !RenderLocalMap(map_options)) return std::nullopt;
   const std::size_t newest = nodes_.size() - 1;
+  const Pose2D T_world_robot = graph_.nodes()[newest];
+  const std::vector<std::size_t> old = OldNodesNear(T_world_robot, nodes_[newest].path_m);
+  if (old.size() < static_cast<std::size_t>(options_.min_local_nodes)) return std::nullopt;
   ClosureAttempt attempt;
   attempt.iteration = nodes_[newest].iteration;
   attempt.node = newest;
-  attempt.confirming = confirming;
-  attempt.local_nodes = local_nodes_.size();
-  attempt.T_world_robot_before = graph_.nodes()[newest];
-  attempt.old_node = local_nodes_.front();
+  attempt.local_nodes = old.size();
+  attempt.T_world_robot_before = T_world_robot;
+  attempt.old_node = old.front();
   attempt.old_iteration = nodes_[attempt.old_node].iteration;
   attempt.path_since_m = nodes_[newest].path_m - nodes_[attempt.old_node].path_m;
+  PointMap local(map_options);
+  for (const std::size_t i : old)
+    local.InsertScan(nodes_[i].scan, mounting_.LaserPose(graph_.nodes()[i]));
+  const MapView view{nullptr, &local};
+  const LaserScan& scan = nodes_[newest].scan;
   if (!FitWindow(attempt)) {
     pending_.clear();
     return attempt;
   }
-  const MapView view{nullptr, &*local_map_};
-  const std::vector<Candidate> candidates = Candidates(view, confirming, attempt);
-  const LocalisationResult result = Localise(view, nodes_[newest].scan, candidates, mounting_,
-                                             localisation, RefinePolicy::kBestValid, 3);
-  Judge(result, attempt);
-  return attempt;
-}
-
-// Renders the map of the old nodes near the newest node; false when too few are near.
-bool LoopCloser::RenderLocalMap(const PointMapOptions& map_options) {
-  local_nodes_ = OldNodesNear(graph_.nodes().back(), nodes_.back().path_m);
-  local_map_.reset();
-  if (local_nodes_.size() < static_cast<std::size_t>(options_.min_local_nodes)) return false;
-  local_map_.emplace(map_options);
-  for (const std::size_t i : local_nodes_)
-    local_map_->InsertScan(nodes_[i].scan, mounting_.LaserPose(graph_.nodes()[i]));
-  return true;
-}
-
-// The postures the attempt refines: the session's, and either the pending correction applied to
-// it (a confirming attempt, which searches nothing: its window shrinks to that posture) or the
-// wide search's candidates over the window.
-std::vector<Candidate> LoopCloser::Candidates(const MapView& view, bool confirming,
-                                              ClosureAttempt& attempt) {
-  const Pose2D& T_world_robot = attempt.T_world_robot_before;
   std::vector<Candidate> candidates{{T_world_robot, "session"}};
-  if (confirming) {
-    const Pose2D corrected = pending_correction_ * T_world_robot;
-    candidates.push_back({corrected, "pending"});
-    attempt.window = {mounting_.LaserPose(corrected), 0.0, 0.0};
-    return candidates;
-  }
   const WideSearchResult search =
-      WideSearch(view, nodes_[attempt.node].scan, attempt.window, options_.search, &search_field_);
+      WideSearch(view, scan, attempt.window, options_.search, &search_field_);
   for (std::size_t i = 0; i < search.candidates.size(); ++i)
     candidates.push_back(
         {mounting_.RobotPose(search.candidates[i].T_world_laser), "search" + std::to_string(i)});
-  return candidates;
+  const LocalisationResult result =
+      Localise(view, scan, candidates, mounting_, localisation, RefinePolicy::kBestValid, 3);
+  Judge(result, attempt);
+  return attempt;
 }
 
 // The window searched around the current posture, from the path driven since the old node or,
@@ -303,14 +275,8 @@ void LoopCloser::Confirm(const Eigen::Matrix3d& covariance, ClosureAttempt& atte
     const Pose2D disagreement =
         Between(pending_correction_ * attempt.T_world_robot_before, attempt.T_world_robot_matched);
     if (std::hypot(disagreement.x_m, disagreement.y_m) > options_.agree_m ||
-        std::abs(NormalizeAngle(disagreement.yaw_rad)) > options_.agree_rad) {
+        std::abs(NormalizeAngle(disagreement.yaw_rad)) > options_.agree_rad)
       pending_.clear();
-      // A confirming attempt searched nothing: it may end a closure, not start one.
-      if (attempt.confirming) {
-        attempt.reason = "disagrees with the pending closure";
-        return;
-      }
-    }
   }
   if (pending_.empty()) pending_correction_ = correction;
   const Pose2D& from = graph_.nodes()[attempt.old_node];

@@ -81,7 +81,6 @@ inline constexpr const char* kChainSigmaM = "chain_sigma_m";
 inline constexpr const char* kChainSigmaRad = "chain_sigma_rad";
 inline constexpr const char* kMatched = "T_world_robot_matched";
 inline constexpr const char* kTOldRobot = "T_old_robot";
-inline constexpr const char* kConfirming = "confirming";
 inline constexpr const char* kPredictedShiftM = "predicted_shift_m";
 inline constexpr const char* kSolveDeferred = "solve_deferred";
 inline constexpr const char* kSolveIterations = "solve_iterations";

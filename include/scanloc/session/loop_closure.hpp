@@ -62,13 +62,6 @@ struct LoopClosureOptions {
   int confirm_after = 3;
   double agree_m = 0.1;
   double agree_rad = 0.03;
-  // While a closure is pending, the next nodes only have to say whether they agree with it: each
-  // is refined from the session's posture and from the pending correction applied to it, on the
-  // map of the first attempt's old nodes, without a search; one that disagrees ends the closure
-  // (it cannot start one). The attempt that would confirm it searches its whole window again, so
-  // a look-alike place has two searches to show itself in. With confirm_by_search every attempt
-  // searches its whole window on a map of the old nodes nearest to it.
-  bool confirm_by_search = false;
   // Floors added to the refinement's standard deviations (it knows only the scan's own noise, not
   // the map's): the edges' information is that of σ ⊕ floor.
   double sigma_floor_m = 0.02;
@@ -104,9 +97,6 @@ struct ClosureAttempt {
   double chain_sigma_m = 0.0;
   double chain_sigma_rad = 0.0;
   SearchWindow window;
-  // A pending closure's confirmation: matched on its first attempt's map from the correction it
-  // found, nothing searched (the window's half sizes are 0).
-  bool confirming = false;
   bool accepted = false;         // validated, pinned, and kept by the graph
   std::string reason;            // why not, or "accepted"
   Pose2D T_world_robot_before;   // the session's posture of the scan
@@ -174,8 +164,6 @@ class LoopCloser {
   std::vector<std::size_t> OldNodesNear(const Pose2D& T_world_robot, double path_m) const;
   std::optional<ClosureAttempt> Try(const LocalisationOptions& localisation,
                                     const PointMapOptions& map_options);
-  bool RenderLocalMap(const PointMapOptions& map_options);
-  std::vector<Candidate> Candidates(const MapView& view, bool confirming, ClosureAttempt& attempt);
   bool FitWindow(ClosureAttempt& attempt) const;
   void Judge(const LocalisationResult& result, ClosureAttempt& attempt);
   void Confirm(const Eigen::Matrix3d& covariance, ClosureAttempt& attempt);
@@ -195,10 +183,6 @@ class LoopCloser {
   Pose2D pending_correction_;
   bool unsolved_ = false;         // closures joined the graph since its last solve
   LikelihoodField search_field_;  // the storage of every attempt's search field
-  // The old nodes of the latest attempt that started afresh, and the map rendered from them:
-  // the confirming attempts of a pending closure are matched on it.
-  std::vector<std::size_t> local_nodes_;
-  std::optional<PointMap> local_map_;
 };
 
 }  // namespace scanloc
