@@ -188,10 +188,7 @@ std::optional<ClosureAttempt> LoopCloser::Try(const LocalisationOptions& localis
   attempt.old_node = old.front();
   attempt.old_iteration = nodes_[attempt.old_node].iteration;
   attempt.path_since_m = nodes_[newest].path_m - nodes_[attempt.old_node].path_m;
-  PointMap local(map_options);
-  for (const std::size_t i : old)
-    local.InsertScan(nodes_[i].scan, mounting_.LaserPose(graph_.nodes()[i]));
-  const MapView view{nullptr, &local};
+  const MapView view{nullptr, &LocalMap(old, map_options)};
   const LaserScan& scan = nodes_[newest].scan;
   if (!FitWindow(attempt)) {
     pending_.clear();
@@ -207,6 +204,22 @@ std::optional<ClosureAttempt> LoopCloser::Try(const LocalisationOptions& localis
       Localise(view, scan, candidates, mounting_, localisation, RefinePolicy::kBestValid, 3);
   Judge(result, attempt);
   return attempt;
+}
+
+// The map rendered from the old nodes `old` at their current postures: the last attempt's when it
+// was made from the same nodes with the same options and no solve has moved them since.
+const PointMap& LoopCloser::LocalMap(const std::vector<std::size_t>& old,
+                                     const PointMapOptions& map_options) {
+  const bool same = local_map_ && old == local_nodes_ &&
+                    map_options.cell_size_m == local_map_options_.cell_size_m &&
+                    map_options.max_point_spacing_m == local_map_options_.max_point_spacing_m;
+  if (same) return *local_map_;
+  local_map_.emplace(map_options);
+  for (const std::size_t i : old)
+    local_map_->InsertScan(nodes_[i].scan, mounting_.LaserPose(graph_.nodes()[i]));
+  local_nodes_ = old;
+  local_map_options_ = map_options;
+  return *local_map_;
 }
 
 // The window searched around the current posture, from the path driven since the old node or,
@@ -331,6 +344,7 @@ void LoopCloser::Solve(ClosureAttempt& attempt) {
 // Solves the graph; `largest_shift_m` becomes the largest node displacement it made.
 PoseGraphSummary LoopCloser::SolveGraph(double& largest_shift_m) {
   unsolved_ = false;
+  local_map_.reset();  // the solve moves the nodes it was rendered from
   const std::vector<Pose2D> before = graph_.nodes();
   const PoseGraphSummary summary = graph_.Optimise(options_.graph);
   largest_shift_m = 0.0;

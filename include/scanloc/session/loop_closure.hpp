@@ -164,6 +164,7 @@ class LoopCloser {
   std::vector<std::size_t> OldNodesNear(const Pose2D& T_world_robot, double path_m) const;
   std::optional<ClosureAttempt> Try(const LocalisationOptions& localisation,
                                     const PointMapOptions& map_options);
+  const PointMap& LocalMap(const std::vector<std::size_t>& old, const PointMapOptions& map_options);
   bool FitWindow(ClosureAttempt& attempt) const;
   void Judge(const LocalisationResult& result, ClosureAttempt& attempt);
   void Confirm(const Eigen::Matrix3d& covariance, ClosureAttempt& attempt);
@@ -183,6 +184,11 @@ class LoopCloser {
   Pose2D pending_correction_;
   bool unsolved_ = false;         // closures joined the graph since its last solve
   LikelihoodField search_field_;  // the storage of every attempt's search field
+  // The map of the latest attempt's old nodes, kept until a solve moves nodes: the next attempt
+  // matched on the same stretch of old nodes, with the same options, uses it again.
+  std::vector<std::size_t> local_nodes_;
+  PointMapOptions local_map_options_;
+  std::optional<PointMap> local_map_;
 };
 
 }  // namespace scanloc
