@@ -10,6 +10,7 @@
 #include <cmath>
 #include <random>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 namespace scanloc {
@@ -93,6 +94,26 @@ TEST(LikelihoodField, RebuiltInTheStorageOfAnotherFieldItEqualsOneBuiltAfresh) {
   // A box that cannot be built leaves the field as it was.
   EXPECT_THROW(reused.Rebuild(points, {1.0, 1.0}, {0.0, 0.0}, fine), std::invalid_argument);
   EXPECT_EQ(reused.width(), fresh.width());
+}
+
+TEST(LikelihoodField, ASumOverMovedCellsEqualsTheirValuesAddedInOrderOutsideCellsAddingZero) {
+  const LikelihoodField field(ScatteredPoints(60, 7), {0.0, 0.0}, {2.0, 1.3});
+  std::mt19937 random(5);
+  // Cells inside, on the edges and beyond the grid on every side.
+  std::uniform_int_distribution<int> x(-8, field.width() + 8), y(-8, field.height() + 8);
+  std::vector<Eigen::Vector2i> cells;
+  for (int i = 0; i < 200; ++i) cells.emplace_back(x(random), y(random));
+  std::size_t outside = 0;
+  for (int level = 0; level < field.levels(); ++level)
+    for (const auto& [dx, dy] : {std::pair{0, 0}, std::pair{-5, 3}, std::pair{7, -9}}) {
+      float expected = 0.0f;
+      for (const Eigen::Vector2i& c : cells) {
+        expected += field.At(level, c.x() + dx, c.y() + dy);
+        outside += c.x() + dx < 0 || c.y() + dy >= field.height();
+      }
+      EXPECT_EQ(field.Sum(level, cells, dx, dy), expected) << level << " " << dx << " " << dy;
+    }
+  EXPECT_GT(outside, 0u);
 }
 
 }  // namespace

@@ -140,9 +140,7 @@ class BranchAndBound {
                      [](const Node& a, const Node& b) { return a.score > b.score; });
   }
   Node Scored(Node node) {
-    float sum = 0.0f;
-    for (const Eigen::Vector2i& c : cells_[node.heading])
-      sum += field_.At(node.level, c.x() + node.ox, c.y() + node.oy);
+    const float sum = field_.Sum(node.level, cells_[node.heading], node.ox, node.oy);
     node.score = cells_[node.heading].empty() ? 0.0f : sum / cells_[node.heading].size();
     ++scored_;
     return node;

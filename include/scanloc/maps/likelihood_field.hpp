@@ -35,6 +35,19 @@ class LikelihoodField {
     if (ix < 0 || iy < 0 || ix >= width_ || iy >= height_) return 0.0f;
     return levels_[level][static_cast<std::size_t>(iy) * width_ + ix];
   }
+  // The sum of level h's values over `cells`, each moved by (dx, dy): the score of a posture, read
+  // in one pass over one level (cells outside the grid add 0).
+  float Sum(int level, const std::vector<Eigen::Vector2i>& cells, int dx, int dy) const {
+    const float* values = levels_[level].data();
+    float sum = 0.0f;
+    for (const Eigen::Vector2i& c : cells) {
+      const int ix = c.x() + dx, iy = c.y() + dy;
+      if (static_cast<unsigned>(ix) < static_cast<unsigned>(width_) &&
+          static_cast<unsigned>(iy) < static_cast<unsigned>(height_))
+        sum += values[static_cast<std::size_t>(iy) * width_ + ix];
+    }
+    return sum;
+  }
   // The cell holding a world point (may lie outside the grid).
   Eigen::Vector2i Cell(const Eigen::Vector2d& world) const;
   int levels() const { return static_cast<int>(levels_.size()); }
