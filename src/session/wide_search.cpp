@@ -1,6 +1,7 @@
 #include "scanloc/session/wide_search.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -169,13 +170,20 @@ class BranchAndBound {
     if (node.score <= Threshold()) return;
     if (node.level == 0) return Offer(node);
     const int step = 1 << (node.level - 1);
-    std::vector<Node> children;
+    // At most four children, kept on the stack and put best first by a stable insertion (the
+    // order a stable sort gives, without its buffer on the heap at every node).
+    std::array<Node, 4> children;
+    std::size_t count = 0;
     for (const int dy : {0, step})
-      for (const int dx : {0, step})
-        if (node.ox + dx <= half_ && node.oy + dy <= half_)
-          children.push_back(Scored({node.heading, node.ox + dx, node.oy + dy, node.level - 1}));
-    SortBestFirst(children);
-    for (const Node& child : children) Descend(child);
+      for (const int dx : {0, step}) {
+        if (node.ox + dx > half_ || node.oy + dy > half_) continue;
+        const Node child = Scored({node.heading, node.ox + dx, node.oy + dy, node.level - 1});
+        std::size_t at = count++;
+        for (; at > 0 && children[at - 1].score < child.score; --at)
+          children[at] = children[at - 1];
+        children[at] = child;
+      }
+    for (std::size_t i = 0; i < count; ++i) Descend(children[i]);
   }
 
   const LikelihoodField& field_;
