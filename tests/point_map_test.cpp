@@ -331,5 +331,16 @@ TEST(PointMapFromLinesTest, SamplesIncludeVerticesWithGapsAtMostTheRequestedSpac
   }
 }
 
+TEST(PointMapOptions, OptionsDifferingInAnyOneFieldCompareUnequal) {
+  const PointMapOptions base;
+  PointMapOptions cell = base;
+  cell.cell_size_m += 0.01;
+  PointMapOptions spacing = base;
+  spacing.max_point_spacing_m += 0.01;
+  EXPECT_EQ(base, PointMapOptions{});
+  EXPECT_NE(base, cell);
+  EXPECT_NE(base, spacing);
+}
+
 }  // namespace
 }  // namespace scanloc

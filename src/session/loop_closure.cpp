@@ -210,9 +210,7 @@ std::optional<ClosureAttempt> LoopCloser::Try(const LocalisationOptions& localis
 // was made from the same nodes with the same options and no solve has moved them since.
 const PointMap& LoopCloser::LocalMap(const std::vector<std::size_t>& old,
                                      const PointMapOptions& map_options) {
-  const bool same = local_map_ && old == local_nodes_ &&
-                    map_options.cell_size_m == local_map_options_.cell_size_m &&
-                    map_options.max_point_spacing_m == local_map_options_.max_point_spacing_m;
+  const bool same = local_map_ && old == local_nodes_ && map_options == local_map_options_;
   if (same) return *local_map_;
   local_map_.emplace(map_options);
   for (const std::size_t i : old)

@@ -23,6 +23,11 @@ struct PointMapOptions {
   // Upper bound of the spacing recorded with a point (the gap to its neighbours on the surface it
   // samples); it bounds how much of the view one isolated point may occlude. Metres.
   double max_point_spacing_m = 0.3;
+
+  friend bool operator==(const PointMapOptions& a, const PointMapOptions& b) {
+    return a.cell_size_m == b.cell_size_m && a.max_point_spacing_m == b.max_point_spacing_m;
+  }
+  friend bool operator!=(const PointMapOptions& a, const PointMapOptions& b) { return !(a == b); }
 };
 
 class PointMap {
