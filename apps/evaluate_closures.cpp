@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "evaluation_frame.hpp"
 #include "scanloc/evaluation/closure_precision.hpp"
 #include "scanloc/io/g2o_file.hpp"
 #include "scanloc/io/trajectory.hpp"
@@ -191,13 +192,13 @@ void AddSessionPerClosure(const ClosuresBesideTrajectory& beside, nlohmann::json
 }
 
 void PrintText(const ClosureEvaluationArguments& a, const RunClosures& run,
-               const ClosurePrecision& precision) {
+               const ClosurePrecision& precision, const EvaluationFrame& frame) {
   std::printf("closures: %zu tried, %zu measured, %zu accepted", run.tried,
               precision.measured.closures, precision.accepted.closures);
   if (run.graph_known) std::printf(", %zu in the graph", precision.in_graph.closures);
-  std::printf(
-      "\nright (within %.3g m and %.3g° of the reference), of those with reference poses:\n",
-      a.max_error_m, a.max_error_deg);
+  std::printf("\nreference poses taken as the scans': %s\n", Describe(frame).c_str());
+  std::printf("right (within %.3g m and %.3g° of the reference), of those with reference poses:\n",
+              a.max_error_m, a.max_error_deg);
   PrintTally("measured", precision.measured);
   PrintTally("accepted", precision.accepted);
   if (run.graph_known) PrintTally("in the graph", precision.in_graph);
@@ -219,7 +220,9 @@ void EvaluateRunClosures(const ClosureEvaluationArguments& a) {
   options.timestamp_tolerance_s = a.tolerance_s;
   options.max_translation_error_m = a.max_error_m;
   options.max_rotation_error_deg = a.max_error_deg;
-  const std::vector<StampedPose> reference = ReadReferencePoses(a.reference_path);
+  const EvaluationFrame frame = ResolveEvaluationFrame(a.mounting, a.run_folder);
+  std::vector<StampedPose> reference = ReadReferencePoses(a.reference_path);
+  for (StampedPose& pose : reference) pose.pose = frame.mounting.RobotPose(pose.pose);
   const ClosurePrecision precision = EvaluateClosures(run.measurements, reference, options);
   if (precision.measured.evaluation.matched == 0)
     throw std::runtime_error("no measured closure has reference poses for both of its scans (" +
@@ -236,7 +239,7 @@ void EvaluateRunClosures(const ClosureEvaluationArguments& a) {
               << " has no trajectory-online.tum: the closures are not compared with the "
                  "session's own postures\n";
   if (!a.json) {
-    PrintText(a, run, precision);
+    PrintText(a, run, precision, frame);
     if (beside) PrintBeside(session->first, *beside, run.graph_known);
     return;
   }
@@ -246,6 +249,7 @@ void EvaluateRunClosures(const ClosureEvaluationArguments& a) {
                         {"in_graph", nullptr},
                         {"closures", ClosuresJson(run, precision)}};
   if (run.graph_known) out["in_graph"] = TallyJson(precision.in_graph);
+  out["laser_mounting"] = ToJson(frame);
   out["session"] = beside ? BesideJson(session->first, *beside, run.graph_known) : nullptr;
   if (beside) AddSessionPerClosure(*beside, out["closures"]);
   std::cout << out.dump(2) << '\n';

@@ -3,6 +3,7 @@
 // reference poses of the log.
 
 #include <string>
+#include <vector>
 
 namespace scanloc::app {
 
@@ -12,10 +13,13 @@ struct ClosureEvaluationArguments {
   double tolerance_s = 1e-3;                      // timestamp matching
   double max_error_m = 0.1, max_error_deg = 1.0;  // a closure within both is right
   bool json = false;
+  std::vector<double> mounting;  // x y yaw of the laser on the robot; empty: the run's
 };
 
-// Prints the counts, the share right and the errors (text or JSON). Throws std::runtime_error when
-// the run tried no closure, measured none, or no measured closure has reference poses.
+// The reference poses are the scans'; they are compared with the closures, which relate the
+// robot's postures, through the laser's mounting (ResolveEvaluationFrame). Prints the counts, the
+// share right and the errors (text or JSON). Throws std::runtime_error when the run tried no
+// closure, measured none, or no measured closure has reference poses.
 void EvaluateRunClosures(const ClosureEvaluationArguments& arguments);
 
 }  // namespace scanloc::app

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -10,6 +11,7 @@
 
 #include "commands.hpp"
 #include "evaluate_closures.hpp"
+#include "evaluation_frame.hpp"
 #include "scanloc/evaluation/relations_evaluation.hpp"
 #include "scanloc/io/trajectory.hpp"
 
@@ -46,7 +48,8 @@ std::runtime_error NothingMatched(const std::vector<StampedPose>& trajectory,
 }
 
 // The relations metric's counts and statistics, as text or JSON.
-void PrintRelationsEvaluation(const RelationsEvaluation& e, bool json) {
+void PrintRelationsEvaluation(const RelationsEvaluation& e, const EvaluationFrame& frame,
+                              bool json) {
   auto stats = [](const ErrorStatistics& s) {
     return nlohmann::json{{"mean", s.mean}, {"std", s.std}, {"max", s.max}};
   };
@@ -56,12 +59,14 @@ void PrintRelationsEvaluation(const RelationsEvaluation& e, bool json) {
                                 {"translation_m", stats(e.translation_m)},
                                 {"rotation_deg", stats(e.rotation_deg)},
                                 {"translation_squared_m2", stats(e.translation_squared_m2)},
-                                {"rotation_squared_deg2", stats(e.rotation_squared_deg2)}}
+                                {"rotation_squared_deg2", stats(e.rotation_squared_deg2)},
+                                {"laser_mounting", ToJson(frame)}}
                      .dump(2)
               << '\n';
     return;
   }
   std::printf("relations: %zu matched, %zu unmatched\n", e.matched, e.unmatched);
+  std::printf("scored as the scans' poses: %s\n", Describe(frame).c_str());
   std::printf("translation [m]     %.4f ± %.4f (max %.4f)\n", e.translation_m.mean,
               e.translation_m.std, e.translation_m.max);
   std::printf("translation² [m²]   %.5f ± %.5f (max %.5f)\n", e.translation_squared_m2.mean,
@@ -79,6 +84,7 @@ void RegisterEvaluateCommand(CLI::App& app) {
     std::string trajectory_path, relations_path;
     double tolerance_s = 1e-3;
     bool json = false;
+    std::vector<double> mounting;
     ClosureEvaluationArguments closures;
   };
   auto a = std::make_shared<Arguments>();
@@ -115,16 +121,25 @@ void RegisterEvaluateCommand(CLI::App& app) {
   command->add_option("--max-error-deg", a->closures.max_error_deg, "see --max-error-m")
       ->check(CLI::PositiveNumber);
   command->add_option("--tolerance", a->tolerance_s, "timestamp matching tolerance (s)");
+  command
+      ->add_option("--mounting", a->mounting,
+                   "X Y YAW: the laser on the robot whose postures are scored (relations and "
+                   "reference poses are the scans'); default: the run's, from summary.json beside "
+                   "the trajectory or in the run folder")
+      ->expected(3);
   command->add_flag("--json", a->json, "print JSON");
   command->final_callback([a] {
     if (!a->closures.run_folder.empty()) {
       a->closures.tolerance_s = a->tolerance_s;
       a->closures.json = a->json;
+      a->closures.mounting = a->mounting;
       return EvaluateRunClosures(a->closures);
     }
     if (a->trajectory_path.empty())
       throw CLI::RequiredError("--trajectory and --relations, or --closures and --reference,");
-    const auto trajectory = ReadTumTrajectory(a->trajectory_path);
+    const EvaluationFrame frame = ResolveEvaluationFrame(
+        a->mounting, std::filesystem::path(a->trajectory_path).parent_path().string());
+    const auto trajectory = LaserPoses(ReadTumTrajectory(a->trajectory_path), frame.mounting);
     const auto relations = ReadRelations(a->relations_path);
     RelationsEvaluationOptions options;
     options.timestamp_tolerance_s = a->tolerance_s;
@@ -133,7 +148,7 @@ void RegisterEvaluateCommand(CLI::App& app) {
       std::cerr << "warning: " << a->trajectory_path << ": " << backwards
                 << " timestamps go backwards or repeat the previous one\n";
     if (e.matched == 0) throw NothingMatched(trajectory, relations, a->tolerance_s);
-    PrintRelationsEvaluation(e, a->json);
+    PrintRelationsEvaluation(e, frame, a->json);
   });
 }
 

@@ -1,6 +1,7 @@
 // The five sparse Radish logs of other buildings (../shared/datasets/radish, see its README):
 // a regression guard for the default session on logs it was not tuned on. Where the default
-// session holds, its accuracy is asserted; a run that mostly does not must say so loudly. Skips when the logs are absent (in CI they are present).
+// session holds, its accuracy is asserted; a run that mostly does not must say so loudly. Skips
+// when the logs are absent (in CI they are present).
 
 #include <gtest/gtest.h>
 
@@ -29,7 +30,7 @@ class SessionOnRadishLog : public testing::TemporaryDirTest {
                                      "--out",   out_,    "--quiet"};
     args.insert(args.end(), extra.begin(), extra.end());
     run_ = testing::RunScanloc(args, dir_);
-    return EvaluateRelations(ReadTumTrajectory(out_ + "/trajectory.tum"),
+    return EvaluateRelations(testing::RunLaserPoses(out_),
                              ReadRelations(radish + name + "." + relations));
   }
   nlohmann::json Summary() const {

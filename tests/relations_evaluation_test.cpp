@@ -55,6 +55,26 @@ TEST(RelationsEvaluation, ErrorsAreTheKnownOffsetsBetweenEstimateAndRelations) {
   EXPECT_NEAR(evaluation.errors[2].yaw_rad, -0.1, kTolerance);
 }
 
+// A robot passes a place going east, then comes back going west, its laser 0.04 m ahead of its
+// base. The scans' relation of the two passes is what the scans saw: the laser poses are
+// (0.04, 0, 0) and (-0.04, 0, π), 0.08 m apart. The robot's poses are both at the origin, so
+// scoring them on that relation is wrong by the 0.08 m; their laser poses score zero.
+TEST(RelationsEvaluation, RelationsOfScansScoreTheLaserPosesOfARobotTrajectory) {
+  const LaserMounting mounting{Pose2D(0.04, 0.0, 0.0)};
+  const std::vector<StampedPose> robot = {{1.0, Pose2D(0.0, 0.0, 0.0)},
+                                          {2.0, Pose2D(0.0, 0.0, M_PI)}};
+  const std::vector<Relation> scans = {
+      {1.0, 2.0, Between(mounting.LaserPose(robot[0].pose), mounting.LaserPose(robot[1].pose))}};
+  EXPECT_NEAR(scans[0].T_1_2.x_m, -0.08, kTolerance);
+  EXPECT_NEAR(EvaluateRelations(robot, scans).translation_m.mean, 0.08, kTolerance);
+  const std::vector<StampedPose> laser = LaserPoses(robot, mounting);
+  ASSERT_EQ(laser.size(), 2u);
+  EXPECT_DOUBLE_EQ(laser[1].timestamp_s, 2.0);
+  EXPECT_NEAR(laser[1].pose.x_m, -0.04, kTolerance);
+  EXPECT_NEAR(EvaluateRelations(laser, scans).translation_m.mean, 0.0, kTolerance);
+  EXPECT_NEAR(EvaluateRelations(laser, scans).rotation_deg.mean, 0.0, kTolerance);
+}
+
 TEST(RelationsEvaluation, StatisticsAreHandComputedPopulationMeanStdAndMax) {
   const RelationsEvaluation evaluation = EvaluateRelations(HandTrajectory(), HandRelations());
   // Translations {0.5, 0, 0} m.

@@ -1,10 +1,13 @@
 #include "test_support.hpp"
 
 #include "scanloc/common/parse_error.hpp"
+#include "scanloc/evaluation/relations_evaluation.hpp"
+#include "scanloc/io/run_summary.hpp"
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <random>
 
 namespace scanloc::testing {
@@ -105,6 +108,13 @@ std::string TemporaryDirTest::Write(const std::string& name, const std::string& 
   const std::string path = dir_ + "/" + name;
   std::ofstream(path) << content;
   return path;
+}
+
+std::vector<StampedPose> RunLaserPoses(const std::string& run_folder) {
+  const std::optional<LaserMounting> mounting = ReadRunMounting(run_folder + "/summary.json");
+  EXPECT_TRUE(mounting.has_value()) << run_folder << "/summary.json records no mounting";
+  return LaserPoses(ReadTumTrajectory(run_folder + "/trajectory.tum"),
+                    mounting.value_or(LaserMounting{}));
 }
 
 bool Contains(const std::string& text, const std::string& part) {

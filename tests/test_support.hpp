@@ -6,8 +6,10 @@
 #include <cstddef>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "scanloc/geometry/laser_scan.hpp"
+#include "scanloc/io/trajectory.hpp"
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/simulation/simulated_scan.hpp"
 #include "scanloc/worlds/laser_simulator.hpp"
@@ -49,6 +51,11 @@ inline constexpr char kNoDatasets[] =
 #define SCANLOC_REQUIRE_DATASETS(dir)                        \
   const std::string dir = ::scanloc::testing::DatasetsDir(); \
   if (dir.empty()) GTEST_SKIP() << ::scanloc::testing::kNoDatasets
+
+// The laser's poses of a session's run folder (its trajectory.tum through the mounting its
+// summary.json records): what relations between scans are scored on. Fails the test when the
+// summary records no mounting.
+std::vector<StampedPose> RunLaserPoses(const std::string& run_folder);
 
 bool Contains(const std::string& text, const std::string& part);
 

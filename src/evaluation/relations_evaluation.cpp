@@ -169,4 +169,10 @@ RelationsEvaluation EvaluateRelations(const std::vector<StampedPose>& trajectory
   return evaluation;
 }
 
+std::vector<StampedPose> LaserPoses(std::vector<StampedPose> robot_poses,
+                                    const LaserMounting& mounting) {
+  for (StampedPose& pose : robot_poses) pose.pose = mounting.LaserPose(pose.pose);
+  return robot_poses;
+}
+
 }  // namespace scanloc

@@ -7,6 +7,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "scanloc/io/run_summary.hpp"
 #include "scanloc/maps/point_map_io.hpp"
 
 namespace scanloc {
@@ -60,16 +61,6 @@ std::vector<StampedPose> PosesAt(const std::vector<StampedPose>& trajectory,
   return kept;
 }
 
-LaserMounting MountingOf(const nlohmann::json& summary) {
-  LaserMounting mounting;
-  if (summary.contains("config") && summary["config"].contains("mounting")) {
-    const auto& m = summary["config"]["mounting"];
-    mounting.T_robot_laser =
-        Pose2D(m.value("x_m", 0.0), m.value("y_m", 0.0), m.value("yaw_rad", 0.0));
-  }
-  return mounting;
-}
-
 }  // namespace
 
 RunGrid BuildRunFolderGrid(const RunGridRequest& request) {
@@ -86,7 +77,7 @@ RunGrid BuildRunFolderGrid(const RunGridRequest& request) {
     throw std::runtime_error(run + "/summary.json: the session's log " +
                              (log.empty() ? std::string("is not named") : log + " is absent") +
                              " and there is no map.pcd; give the log with --log");
-  const LaserMounting mounting = MountingOf(summary);
+  const LaserMounting mounting = ReadRunMounting(run + "/summary.json").value_or(LaserMounting{});
   std::vector<StampedPose> poses = ReadTumTrajectory(run + "/trajectory.tum");
   if (!request.all_scans) poses = PosesAt(poses, GridScanStamps(run + "/iterations.jsonl"));
   if (have_log) {

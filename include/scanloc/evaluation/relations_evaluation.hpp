@@ -8,12 +8,14 @@
 #include <utility>
 #include <vector>
 
+#include "scanloc/geometry/laser_scan.hpp"
 #include "scanloc/geometry/pose2d.hpp"
 #include "scanloc/io/trajectory.hpp"
 
 namespace scanloc {
 
-// The pose of the scan taken at t2 expressed in the frame of the scan taken at t1.
+// The pose of the scan taken at t2 expressed in the frame of the scan taken at t1: relations
+// relate the laser's poses, not the robot's (they come from matching scans).
 struct Relation {
   double t1_s = 0.0;
   double t2_s = 0.0;
@@ -64,5 +66,12 @@ RelationsEvaluation EvaluateRelations(const std::vector<StampedPose>& trajectory
 std::vector<std::optional<Pose2D>> RelativePoses(
     const std::vector<StampedPose>& trajectory, const std::vector<std::pair<double, double>>& pairs,
     const RelationsEvaluationOptions& options = {});
+
+// The laser's poses of a trajectory of the robot's, the laser mounted as `mounting` says: what
+// relations between scans are to be compared with. Where the laser sits ahead of the robot's base,
+// the robot's relative pose between two passes in opposite directions differs from the scans' by
+// twice the offset.
+std::vector<StampedPose> LaserPoses(std::vector<StampedPose> robot_poses,
+                                    const LaserMounting& mounting);
 
 }  // namespace scanloc

@@ -1,0 +1,30 @@
+#include "scanloc/io/run_summary.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+namespace scanloc {
+
+std::optional<LaserMounting> ReadRunMounting(const std::string& summary_path) {
+  if (!std::filesystem::exists(summary_path)) return std::nullopt;
+  std::ifstream in(summary_path);
+  if (!in) throw std::runtime_error("cannot open " + summary_path);
+  try {
+    const nlohmann::json summary = nlohmann::json::parse(in);
+    if (!summary.contains("config") || !summary["config"].contains("mounting")) return std::nullopt;
+    const nlohmann::json& m = summary["config"]["mounting"];
+    const Pose2D pose(m.at("x_m").get<double>(), m.at("y_m").get<double>(),
+                      m.at("yaw_rad").get<double>());
+    if (!std::isfinite(pose.x_m) || !std::isfinite(pose.y_m) || !std::isfinite(pose.yaw_rad))
+      throw std::runtime_error(summary_path + ": config.mounting must be finite");
+    return LaserMounting{pose};
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(
+        summary_path + ": expected JSON with config.mounting {x_m, y_m, yaw_rad}: " + e.what());
+  }
+}
+
+}  // namespace scanloc
