@@ -49,8 +49,14 @@ run_log() {  # NAME LOG RELATIONS
   /usr/bin/time -f "%U %S %M" -o "$dir/icp-slam.time" icp-slam "$dir/icp-slam.ini" > "$dir/icp-slam.txt" 2>&1
   python3 scripts/mrpt/path-to-tum.py "$dir/robotlaser.log.stamps" "$dir/icp-slam/log_estimated_path.txt" \
     "$dir/icp-slam.tum"
-  "$scanloc" evaluate --trajectory "$dir/icp-slam.tum" --relations "$relations" --json \
-    > "$dir/icp-slam.evaluation.json"
+  # icp-slam's path is the robot's, as scanloc's trajectory is: both are scored through the laser's
+  # mounting (the relations are the scans'), the one scanloc's run recorded.
+  local mounting
+  mounting=$(python3 -c "import json, sys; m = json.load(open(sys.argv[1]))['config']['mounting']; \
+print(m['x_m'], m['y_m'], m['yaw_rad'])" "$dir/scanloc/summary.json")
+  # shellcheck disable=SC2086
+  "$scanloc" evaluate --trajectory "$dir/icp-slam.tum" --relations "$relations" \
+    --mounting $mounting --json > "$dir/icp-slam.evaluation.json"
 }
 
 for log in intel aces fr079; do run_log "$log" "$datasets/$log.clf.gz" "$datasets/$log.relations"; done
