@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -135,6 +137,38 @@ TEST(LoopCloser, ClosuresThatWouldMoveTheMapLessThanTheRenderShiftJoinUnsolvedUn
   EXPECT_GT(moved_m, 0.0);
   EXPECT_LT(moved_m, options.render_min_shift_m);
   EXPECT_FALSE(closer.Finish());  // nothing left unsolved
+}
+
+// The scans of a confirmed batch share their local map's error: each closure edge carries at most
+// 1/confirm_after of the information its floors allow (the floors bound a closure's covariance
+// from below, the refinement's adds to it), so that the batch weighs as one closure.
+TEST(LoopCloser, AConfirmedBatchWeighsAsOneClosure) {
+  const Lap lap = DriveRing(testing::RingBuilding());
+  const LoopClosureOptions options = Enabled();
+  LoopCloser closer(options, LaserMounting{});
+  for (std::size_t i = 0; i < lap.truth.size(); ++i) {
+    closer.AddNode(i, lap.scans[i], lap.truth[i], std::nullopt);
+    closer.MaybeClose(LocalisationOptions{}, PointMapOptions{});
+  }
+  const Eigen::Matrix3d floor_information =
+      Eigen::Vector3d(1.0 / (options.sigma_floor_m * options.sigma_floor_m),
+                      1.0 / (options.sigma_floor_m * options.sigma_floor_m),
+                      1.0 / (options.sigma_floor_rad * options.sigma_floor_rad))
+          .asDiagonal();
+  std::size_t closures = 0;
+  double largest_share = 0.0;
+  for (const PoseGraphEdge& edge : closer.graph().edges()) {
+    if (edge.kind != EdgeKind::kClosure) continue;
+    ++closures;
+    // floor_information / n - information is positive semi-definite: no direction carries more.
+    const Eigen::Matrix3d spare = floor_information / options.confirm_after - edge.information;
+    EXPECT_GE(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(spare).eigenvalues().minCoeff(),
+              -1e-9 * floor_information.maxCoeff());
+    // And not much less: the ring's refinements are far tighter than the floors.
+    largest_share = std::max(largest_share, edge.information(0, 0) / floor_information(0, 0));
+  }
+  ASSERT_GE(closures, static_cast<std::size_t>(options.confirm_after));
+  EXPECT_GT(largest_share, 0.5 / options.confirm_after);
 }
 
 TEST(LoopCloser, WithWindowSigmasTheWindowSpansTheGraphsUncertaintyAndBeyondItsMaximaNoSearch) {

@@ -320,8 +320,13 @@ bool LoopCloser::SolveLater(ClosureAttempt& attempt) const {
   return later;
 }
 
-// Adds the confirmed closures' edges and solves the graph, unless the solve can wait.
+// Adds the confirmed closures' edges and solves the graph, unless the solve can wait. The agreeing
+// scans of a batch were matched on one stretch of old nodes, one after the other: they share that
+// local map's error, so together they are one measurement: each carries 1/n of its information,
+// in the solve and in the χ² test after it.
 void LoopCloser::Solve(ClosureAttempt& attempt) {
+  for (PoseGraphEdge& pending : pending_)
+    pending.information /= static_cast<double>(pending_.size());
   attempt.solve_deferred = SolveLater(attempt);
   for (const PoseGraphEdge& pending : pending_) graph_.AddEdge(pending);
   pending_.clear();
