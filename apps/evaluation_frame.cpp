@@ -1,9 +1,11 @@
 #include "evaluation_frame.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 
 #include "scanloc/io/run_summary.hpp"
 
@@ -11,8 +13,11 @@ namespace scanloc::app {
 
 EvaluationFrame ResolveEvaluationFrame(const std::vector<double>& given,
                                        const std::string& run_folder) {
-  if (given.size() == 3)
+  if (given.size() == 3) {
+    if (!std::isfinite(given[0]) || !std::isfinite(given[1]) || !std::isfinite(given[2]))
+      throw std::runtime_error("--mounting: expected three finite numbers, X Y (m) and YAW (rad)");
     return {LaserMounting{Pose2D(given[0], given[1], given[2])}, "given with --mounting"};
+  }
   const std::string summary = (std::filesystem::path(run_folder) / "summary.json").string();
   if (const std::optional<LaserMounting> mounting = ReadRunMounting(summary))
     return {*mounting, "from " + summary};

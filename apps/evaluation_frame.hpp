@@ -18,12 +18,12 @@ struct EvaluationFrame {
 
 // `given` (x y yaw from --mounting) when it is not empty; else the mounting recorded in
 // `run_folder`/summary.json; else none (the postures are taken as the scans' own, and a note on
-// standard error says so). Throws std::runtime_error naming the file when summary.json is
-// unreadable.
+// standard error says so). Throws std::runtime_error for a given mounting that is not finite, and
+// naming the file when summary.json is unreadable.
 EvaluationFrame ResolveEvaluationFrame(const std::vector<double>& given,
                                        const std::string& run_folder);
 
-// "laser (0.040, 0.000) m, 0.000 rad on the robot, from …", for text output.
+// "laser at (0.040, 0.000) m, 0.000 rad on the robot, from …", for text output.
 std::string Describe(const EvaluationFrame& frame);
 nlohmann::json ToJson(const EvaluationFrame& frame);
 

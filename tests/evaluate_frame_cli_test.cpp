@@ -65,7 +65,7 @@ TEST_F(EvaluateFrameCliTest, AGivenMountingOverridesTheRunsAndNoMountingScoresTh
   EXPECT_NE(last_.err.find("records no laser mounting"), std::string::npos) << last_;
 }
 
-TEST_F(EvaluateFrameCliTest, AnUnreadableSummaryOrAMountingOfTwoNumbersFailsSayingWhy) {
+TEST_F(EvaluateFrameCliTest, AnUnreadableSummaryOrAMountingOfTwoNumbersOrNotFiniteFailsSayingWhy) {
   Write("run/summary.json", "{\"config\": {\"mounting\": {\"x_m\": \"ahead\"}}}");
   testing::ScanlocRun r = testing::RunScanloc(
       {"evaluate", "--trajectory", trajectory_, "--relations", relations_}, dir_);
@@ -77,6 +77,11 @@ TEST_F(EvaluateFrameCliTest, AnUnreadableSummaryOrAMountingOfTwoNumbersFailsSayi
                           dir_);
   EXPECT_TRUE(r.exited && r.exit_code != 0) << r;
   EXPECT_NE(r.err.find("mounting"), std::string::npos) << r;
+  r = testing::RunScanloc({"evaluate", "--trajectory", trajectory_, "--relations", relations_,
+                           "--mounting", "0.04", "nan", "0"},
+                          dir_);
+  EXPECT_TRUE(r.exited && r.exit_code != 0) << r;
+  EXPECT_NE(r.err.find("finite"), std::string::npos) << r;
 }
 
 }  // namespace
