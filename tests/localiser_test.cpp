@@ -192,6 +192,46 @@ TEST(Localiser, FindsItselfOnTheClassroomFromNoInitialPostureWithinFiveCentimetr
   EXPECT_LT(worst_after_m, 0.05);
 }
 
+TEST(Localiser, EachHypothesisSaysWhichRuleItFailedAndADroppedOneGoesWithThatRule) {
+  LineMap world = testing::Classroom();
+  world.segments.push_back({{2.4, 0.6}, {3.6, 0.6}});
+  AddBox(world, 0.3, 5.5, 1.5, 6.7);
+  const Drive drive = DriveThrough(world, {1.5, 2.0, 0.3}, 60, 20.0, 0.02);
+  // The user's initial posture is wrong by a metre and a half and a quarter turn: the rules fail
+  // it until it goes, and the search then finds the right one.
+  LocaliserConfig config = DefaultConfig();
+  config.initial_pose = Pose2D{3.0, 3.5, 0.3 + M_PI / 2.0};
+  Localiser localiser(config, {}, world, PointMap{});
+  int held = 0, failed = 0;
+  std::vector<std::string> dropped;  // "(…): not validated 2 scans in a row (last: rule …)"
+  for (const Iteration& iteration : drive.iterations) {
+    const IterationRecord r = localiser.Process(iteration);
+    for (const Hypothesis& h : r.hypotheses) {
+      ++held;
+      // Validated exactly when its verdict is; a failure names its rule.
+      EXPECT_EQ(h.validated, h.verdict == Verdict::kValid) << ToString(h.verdict);
+      EXPECT_GE(h.match_ratio, 0.0);
+      EXPECT_LE(h.match_ratio, 1.0);
+      if (h.verdict == Verdict::kValid) {
+        EXPECT_GT(h.match_ratio, 0.0);
+        EXPECT_LE(h.expect_value_m, r.max_expect_value_m);
+      }
+      failed += !h.validated;
+    }
+    for (const std::string& why : r.discarded)
+      if (why.find("scans in a row (last: ") != std::string::npos) dropped.push_back(why);
+  }
+  EXPECT_GT(held, 50);
+  EXPECT_GE(failed, 1) << "no hypothesis ever failed the rules: the test shows nothing";
+  ASSERT_EQ(dropped.size(), 1u) << ::testing::PrintToString(dropped);
+  EXPECT_EQ(dropped.front().rfind("(3.", 0), 0u) << dropped.front();
+  EXPECT_TRUE(dropped.front().find("(last: rule ") != std::string::npos ||
+              dropped.front().find("(last: no valid pairs)") != std::string::npos)
+      << dropped.front();
+  ASSERT_TRUE(localiser.confirmed());
+  EXPECT_LT(ErrorM(localiser.hypotheses().front().T_world_robot, drive.truth.back()), 0.05);
+}
+
 TEST(Localiser, CarriedElsewhereItIsLostThenConfirmsTheNewPlaceWithinThirtyScans) {
   // The classroom with a desk and a cupboard: no turn of the room looks like another.
   LineMap world = testing::Classroom();

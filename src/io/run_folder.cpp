@@ -75,7 +75,10 @@ nlohmann::json HypothesesJson(const std::vector<Hypothesis>& hypotheses) {
                    {keys::kSearches, h.searches},
                    {keys::kHeld, h.held},
                    {keys::kCost, h.cost},
-                   {keys::kValidated, h.validated}});
+                   {keys::kValidated, h.validated},
+                   {keys::kReason, ToString(h.verdict)},
+                   {keys::kExpectValueM, h.expect_value_m},
+                   {keys::kMatchRatio, h.match_ratio}});
   return out;
 }
 

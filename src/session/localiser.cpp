@@ -174,6 +174,9 @@ void Localiser::Search(IterationRecord& record, const Iteration& iteration) {
       found.confirmed_in_row = found.confirmations = 1;
       found.cost = refined.cost;
       found.validated = true;
+      found.verdict = Verdict::kValid;
+      found.expect_value_m = refined.test.expect_value_m;
+      found.match_ratio = refined.test.MatchRatio();
       hypotheses_.push_back(found);
       RecordCost(hypotheses_.back(), count_, refined.cost);
     }
@@ -195,9 +198,13 @@ void Localiser::Track(IterationRecord& record, const Iteration& iteration) {
         PredictionCandidates(h.T_world_robot, {}, turning, mounting_, config_.session);
     results.push_back(Localise(View(), iteration.scan, candidates, mounting_, in_force_,
                                RefinePolicy::kBestValid, config_.session.max_refined_candidates));
+    h.verdict = Verdict::kNoValidPairs;
     if (const RankedCandidate* kept = results.back().Kept()) {
       h.T_world_robot = kept->T_world_robot;
       h.cost = kept->cost;
+      h.verdict = kept->verdict;
+      h.expect_value_m = kept->test.expect_value_m;
+      h.match_ratio = kept->test.MatchRatio();
       RecordCost(h, count_, kept->cost);
     }
     h.validated = results.back().validated();
@@ -206,8 +213,10 @@ void Localiser::Track(IterationRecord& record, const Iteration& iteration) {
   for (const Hypothesis& h : hypotheses_)
     if (h.validated) best_cost = std::min(best_cost, h.cost);
   for (Hypothesis& h : hypotheses_) {
-    h.validated =
-        h.validated && h.cost <= config_.localisation.validation.max_cost_ratio * best_cost;
+    if (h.validated && h.cost > config_.localisation.validation.max_cost_ratio * best_cost) {
+      h.validated = false;
+      h.verdict = Verdict::kHighCost;
+    }
     Count(h);
   }
   std::vector<std::size_t> order(hypotheses_.size());
@@ -246,7 +255,8 @@ void Localiser::Prune(IterationRecord& record) {
   for (const Hypothesis& h : hypotheses_) {
     std::string why = OutCosted(h);
     if (why.empty() && h.unconfirmed_in_row >= patience && (!h.held || (competitor && !Costed(h))))
-      why = "not validated " + std::to_string(h.unconfirmed_in_row) + " scans in a row" +
+      why = "not validated " + std::to_string(h.unconfirmed_in_row) +
+            " scans in a row (last: " + ToString(h.verdict) + ")" +
             (h.held ? ", and another validated " + std::to_string(o.confirm_after) : "");
     if (why.empty())
       staying.push_back(h);

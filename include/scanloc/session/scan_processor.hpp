@@ -31,6 +31,11 @@ struct Hypothesis {
   int confirmations = 0;       // scans that validated it since it was found
   double cost = 0.0;           // (3.11) at the last scan that localised it
   bool validated = false;      // at the last scan that localised it
+  // The rules' verdict at that scan (rule 3 among the held hypotheses included), and the
+  // Likelihood Test of its refinement there.
+  Verdict verdict = Verdict::kNoValidPairs;
+  double expect_value_m = 0.0;
+  double match_ratio = 0.0;
   int searches = 0;  // global searches since it was found (the user's initial posture counts one)
   // A posture confirmed before and since lost: held until another has been validated
   // confirm_after scans in a row.
