@@ -2,21 +2,39 @@
 // changed, from a given posture or from none (a global search), holding every hypothesis the
 // Likelihood Test cannot yet tell apart.
 
+#include <filesystem>
+#include <iostream>
 #include <memory>
 #include <stdexcept>
 
 #include "commands.hpp"
+#include "scanloc/io/run_summary.hpp"
 #include "scanloc/session/localiser.hpp"
 #include "sequence_command.hpp"
 
 namespace scanloc::app {
 namespace {
 
+// Rule 2's prior E_max becomes the point map's own signature when the session that wrote the map
+// left one beside it: the finished map fits its own scans more loosely than the laser alone.
+void UseMapSignature(const SequenceArguments& a, Config& config) {
+  if (a.point_map_path.empty() || !config.localise.map_signature) return;
+  const auto summary = std::filesystem::path(a.point_map_path).parent_path() / "summary.json";
+  const std::optional<double> bound = ReadMapSignatureBound(summary.string());
+  if (!bound) return;
+  if (!a.quiet)
+    std::cerr << "localise: rule 2's prior E_max " << *bound << " m, the map's own signature ("
+              << summary.string() << "; --set localise.map_signature=false for "
+              << config.validation.max_expect_value_m << " m)\n";
+  config.validation.max_expect_value_m = *bound;
+}
+
 void Run(const SequenceArguments& a) {
   if (a.point_map_path.empty() && a.line_map_path.empty())
     throw std::invalid_argument(
         "localise needs a map: --point-map MAP.pcd, --line-map FILE, or both");
   Config config = a.config.Build();
+  UseMapSignature(a, config);
   config.write_occupancy_grid = false;  // the map is not the run's: it is not rebuilt
   LocaliserConfig localiser;
   localiser.localiser = config.localise;

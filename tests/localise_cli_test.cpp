@@ -66,15 +66,17 @@ TEST_F(LocaliseCliTest, FromNoPostureTheClassroomIsAmbiguousThenFollowsTheSessio
     EXPECT_LT(series[i - 1]["scan"].get<int>(), series[i]["scan"].get<int>());
     EXPECT_TRUE(series[i - 1]["state"] != series[i]["state"] ||
                 series[i - 1]["hypotheses"] != series[i]["hypotheses"]);
-    confirmation_listed = confirmation_listed || (series[i]["state"] == "confirmed" &&
-                                                  series[i]["scan"].get<std::size_t>() == confirmed);
+    confirmation_listed =
+        confirmation_listed ||
+        (series[i]["state"] == "confirmed" && series[i]["scan"].get<std::size_t>() == confirmed);
   }
   EXPECT_TRUE(confirmation_listed) << series.dump();
   // Where the look-alike went, the series says why: out-costed at the same scans.
   bool reason_given = false;
   for (const auto& point : series)
     for (const auto& why : point.value("discarded", nlohmann::json::array()))
-      reason_given = reason_given || why.get<std::string>().find("% more than") != std::string::npos;
+      reason_given =
+          reason_given || why.get<std::string>().find("% more than") != std::string::npos;
   EXPECT_TRUE(reason_given) << series.dump();
   const auto reference = ReadTum(dir_ + "/session/trajectory.tum");
   const auto found = ReadTum(dir_ + "/localise/trajectory.tum");
@@ -87,8 +89,8 @@ TEST_F(LocaliseCliTest, FromNoPostureTheClassroomIsAmbiguousThenFollowsTheSessio
   ASSERT_TRUE(report.exited && report.exit_code == 0) << report;
   const std::string page = testing::ReadWholeFile(dir_ + "/localise/report.html");
   EXPECT_TRUE(testing::Contains(page, "ambiguous (2 hypotheses)"));
-  EXPECT_TRUE(testing::Contains(page, "scan 0: ambiguous (2) → scan " + std::to_string(confirmed) +
-                                          ": confirmed (1)"))
+  EXPECT_TRUE(testing::Contains(
+      page, "scan 0: ambiguous (2) → scan " + std::to_string(confirmed) + ": confirmed (1)"))
       << "the summary table's hypotheses over time";
   EXPECT_TRUE(testing::Contains(page, "[discarded ("));
   EXPECT_TRUE(testing::Contains(page, "first confirmed scan</th><td>" + std::to_string(confirmed)));
@@ -126,6 +128,65 @@ TEST_F(LocaliseCliTest,
   const double max_m = std::stod(second.substr(slash + 3));
   EXPECT_LT(median_m, 0.02);
   EXPECT_LT(max_m, 0.05) << "the ambiguous scans are the hypothesis the rules kept best";
+}
+
+TEST_F(LocaliseCliTest, OnASessionsPointMapRule2sPriorIsTheMapsOwnSignatureUnlessTurnedOff) {
+  const auto session =
+      testing::RunScanloc({"session", "--log", Classroom("classroom.seq.jsonl"), "--initial-pose",
+                           "1.126", "3.112", "0.0463", "--out", dir_ + "/session", "--quiet"},
+                          dir_);
+  ASSERT_TRUE(session.exited && session.exit_code == 0) << session;
+  const auto written =
+      nlohmann::json::parse(testing::ReadWholeFile(dir_ + "/session/summary.json"));
+  const auto& signature = written["map_signature"];
+  ASSERT_TRUE(signature.is_object()) << written.dump(2);
+  EXPECT_TRUE(signature["learned"].get<bool>());
+  EXPECT_EQ(signature["scans"].get<int>(), written["validated"].get<int>())
+      << "every confirmed scan laid (fewer than the sample holds)";
+  const double bound = signature["max_expect_value_m"].get<double>();
+  EXPECT_GE(bound, 0.1) << "never below the prior";
+  EXPECT_LT(bound, 0.2);
+  EXPECT_LT(signature["median_expect_value_m"].get<double>(), bound);
+  const auto e_max = [&](const std::string& out, std::vector<std::string> more) {
+    std::vector<std::string> words{"localise",
+                                   "--log",
+                                   Classroom("classroom.seq.jsonl"),
+                                   "--point-map",
+                                   dir_ + "/session/map.pcd",
+                                   "--out",
+                                   dir_ + "/" + out};
+    words.insert(words.end(), more.begin(), more.end());
+    const auto run = testing::RunScanloc(words, dir_);
+    EXPECT_TRUE(run.exited && run.exit_code == 0) << run;
+    const auto summary =
+        nlohmann::json::parse(testing::ReadWholeFile(dir_ + "/" + out + "/summary.json"));
+    return std::make_pair(summary["config"]["validation"]["max_expect_value_m"].get<double>(),
+                          run.err);
+  };
+  const auto [used, said] = e_max("signature", {});
+  EXPECT_DOUBLE_EQ(used, bound);
+  EXPECT_TRUE(testing::Contains(said, "the map's own signature")) << said;
+  EXPECT_DOUBLE_EQ(e_max("prior", {"--set", "localise.map_signature=false"}).first, 0.1);
+}
+
+TEST_F(LocaliseCliTest, AMalformedSummaryBesideTheMapIsNamedAndNothingIsWritten) {
+  std::filesystem::create_directories(dir_ + "/map");
+  const auto session =
+      testing::RunScanloc({"session", "--log", Classroom("classroom.seq.jsonl"), "--initial-pose",
+                           "1.126", "3.112", "0.0463", "--out", dir_ + "/session", "--quiet"},
+                          dir_);
+  ASSERT_TRUE(session.exited && session.exit_code == 0) << session;
+  std::filesystem::copy_file(dir_ + "/session/map.pcd", dir_ + "/map/map.pcd");
+  testing::WriteText(dir_ + "/map/summary.json", "{\"map_signature\": {\"learned\": true}}");
+  const auto run =
+      testing::RunScanloc({"localise", "--log", Classroom("classroom.seq.jsonl"), "--point-map",
+                           dir_ + "/map/map.pcd", "--out", dir_ + "/run", "--quiet"},
+                          dir_);
+  ASSERT_TRUE(run.exited) << run;
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_TRUE(testing::Contains(run.err, "map/summary.json")) << run;
+  EXPECT_TRUE(testing::Contains(run.err, "max_expect_value_m")) << run;
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/run")) << "a run folder was created";
 }
 
 TEST_F(LocaliseCliTest, WithoutAMapItIsRefusedAndNothingIsWritten) {

@@ -308,6 +308,9 @@ void VisitLocalise(C& c, V& v) {
   v("localise.min_cost_excess_ratio", l.min_cost_excess_ratio, Bounds{0, 1e3},
     "a hypothesis costlier than another at the same scans beyond chance is dropped when the "
     "excess is at least this fraction of the cheaper's cost");
+  v("localise.map_signature", l.map_signature,
+    "rule 2's prior E_max is the point map's own signature (summary.json beside the PCD), when "
+    "a session wrote one");
   v("localise.max_hypotheses", l.max_hypotheses, Bounds{1, 1000}, "hypotheses held at most");
   v("localise.same_posture_m", l.same_posture_m, Bounds{0, 1e3},
     "hypotheses closer than this and same_posture_rad are one, m");

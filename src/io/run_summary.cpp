@@ -27,4 +27,24 @@ std::optional<LaserMounting> ReadRunMounting(const std::string& summary_path) {
   }
 }
 
+std::optional<double> ReadMapSignatureBound(const std::string& summary_path) {
+  if (!std::filesystem::exists(summary_path)) return std::nullopt;
+  std::ifstream in(summary_path);
+  if (!in) throw std::runtime_error("cannot open " + summary_path);
+  try {
+    const nlohmann::json summary = nlohmann::json::parse(in);
+    if (!summary.contains("map_signature")) return std::nullopt;
+    const nlohmann::json& signature = summary["map_signature"];
+    if (!signature.at("learned").get<bool>()) return std::nullopt;
+    const double bound = signature.at("max_expect_value_m").get<double>();
+    if (!(bound > 0.0) || !std::isfinite(bound))
+      throw std::runtime_error(summary_path + ": map_signature.max_expect_value_m must be > 0");
+    return bound;
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(
+        summary_path +
+        ": expected JSON with map_signature {learned, max_expect_value_m}: " + e.what());
+  }
+}
+
 }  // namespace scanloc

@@ -245,6 +245,13 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
   if (MostlyUnconfirmed(c))
     summary["problem"] = "most localised scans were not confirmed by the Likelihood Test";
   if (c.localisation) AddLocalisationSummary(c, summary);
+  if (const auto signature = run.session ? run.session->map_signature() : std::nullopt) {
+    summary["map_signature"] = {{"max_expect_value_m", signature->max_expect_value_m},
+                                {"median_expect_value_m", signature->median_expect_value_m},
+                                {"scans", signature->scans},
+                                {"learned", signature->learned}};
+    summary["map_signature_wall_s"] = signature->wall_s;  // a timing, beside the others
+  }
   if (run.session && run.session->pose_graph()) {
     const PoseGraph& graph = *run.session->pose_graph();
     summary["loop_closure"] = {{"nodes", graph.nodes().size()},

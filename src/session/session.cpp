@@ -289,6 +289,7 @@ void Session::MaybeExtend(IterationRecord& record, const LaserScan& scan) {
       ExtendMap(point_map_, scan, mounting_.LaserPose(record.T_world_robot), options_.extension);
   last_inserted_pose_ = record.T_world_robot;
   record.inserted = true;
+  if (record.validated) laid_.Add(record.index, scan, record.T_world_robot);
   record.insert_s = SecondsSince(start);
 }
 
@@ -335,9 +336,13 @@ void Session::RenderTracked() {
 // Closures that joined the graph unsolved are solved; the map is rendered from every node when
 // tracking kept only the newest, or when that solve moved a node.
 void Session::Finish() {
-  if (!options_.loop_closure.enabled) return;
-  const bool moved = loop_.Finish();
-  if (Tracking() || moved) point_map_ = loop_.Render(point_map_.options(), options_.extension);
+  if (options_.loop_closure.enabled) {
+    const bool moved = loop_.Finish();
+    if (Tracking() || moved) point_map_ = loop_.Render(point_map_.options(), options_.extension);
+  }
+  if (!point_map_.empty())
+    map_signature_ = MeasureMapSignature(View(), laid_, CorrectedPostures(), mounting_,
+                                         localisation_, options_.signature);
 }
 
 std::vector<std::optional<Pose2D>> Session::CorrectedPostures() const {

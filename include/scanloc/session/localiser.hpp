@@ -40,6 +40,9 @@ struct LocaliserOptions {
   // identical rooms the twins' refinements came to differ by 5.6 % at every scan, a look-alike
   // that the view tells apart by 20 % (tests/localiser_test.cpp; docs/BENCHMARKS.md).
   double min_cost_excess_ratio = 0.1;
+  // Rule 2's prior E_max on a point map a session wrote is that map's own signature (the bound
+  // in the summary.json beside it, map_signature.hpp), until the localiser's signature learned.
+  bool map_signature = true;
   int max_hypotheses = 8;  // the best by confirmations, then cost, are kept
   // Hypotheses closer than both of these are one (the better kept).
   double same_posture_m = 0.3;

@@ -10,6 +10,7 @@
 #include "scanloc/session/iteration.hpp"
 #include "scanloc/session/localisation.hpp"
 #include "scanloc/session/loop_closure.hpp"
+#include "scanloc/session/map_signature.hpp"
 #include "scanloc/session/replay.hpp"
 #include "scanloc/session/wide_search.hpp"
 
@@ -104,6 +105,9 @@ class ScanProcessor {
   // Postures corrected after the fact by loop closure, by record index (none for a record the
   // correction does not reach); empty when the processor corrects nothing.
   virtual std::vector<std::optional<Pose2D>> CorrectedPostures() const { return {}; }
+  // How well the finished map explains the scans that built it (after Finish); none when the
+  // processor does not build the map.
+  virtual std::optional<MapSignature> map_signature() const { return {}; }
   // The pose graph, when the processor keeps one.
   virtual const PoseGraph* pose_graph() const { return nullptr; }
 };

@@ -17,6 +17,7 @@
 #include "scanloc/session/localisation.hpp"
 #include "scanloc/session/loop_closure.hpp"
 #include "scanloc/session/map_extension.hpp"
+#include "scanloc/session/map_signature.hpp"
 #include "scanloc/session/recovery.hpp"
 #include "scanloc/session/scan_processor.hpp"
 
@@ -130,6 +131,7 @@ class Session : public ScanProcessor {
   const LoopCloser& loop_closer() const { return loop_; }
   std::vector<std::optional<Pose2D>> CorrectedPostures() const override;
   const PoseGraph* pose_graph() const override;
+  std::optional<MapSignature> map_signature() const override { return map_signature_; }
 
  private:
   // One iteration, localised, or replayed from `recorded` when it is given.
@@ -165,6 +167,8 @@ class Session : public ScanProcessor {
   PointMap point_map_;
   std::size_t tracked_from_node_ = 0;  // the oldest node in the map tracked against
   LaserSignature signature_;
+  LaidScanSample laid_;  // confirmed scans laid on the map, for the map's own signature
+  std::optional<MapSignature> map_signature_;
   DriftTracker drift_;
   LoopCloser loop_;
   std::size_t count_ = 0;
