@@ -46,6 +46,15 @@ bool MovedSince(const std::optional<Pose2D>& from, const Iteration& iteration,
 }
 
 // "(x, y, θ)" of a posture, for the reasons a hypothesis was discarded.
+// The hypothesis takes a refinement's posture and what the rules said of it.
+void TakeRefinement(Hypothesis& h, const RankedCandidate& refined) {
+  h.T_world_robot = refined.T_world_robot;
+  h.cost = refined.cost;
+  h.verdict = refined.verdict;
+  h.expect_value_m = refined.test.expect_value_m;
+  h.match_ratio = refined.test.MatchRatio();
+}
+
 std::string Describe(const Pose2D& p) {
   char text[80];
   std::snprintf(text, sizeof text, "(%.2f, %.2f, %.3f)", p.x_m, p.y_m, p.yaw_rad);
@@ -170,13 +179,9 @@ void Localiser::Search(IterationRecord& record, const Iteration& iteration) {
   for (const RankedCandidate& refined : result.refined)
     if (refined.verdict == Verdict::kValid) {
       Hypothesis found;
-      found.T_world_robot = refined.T_world_robot;
+      TakeRefinement(found, refined);
       found.confirmed_in_row = found.confirmations = 1;
-      found.cost = refined.cost;
       found.validated = true;
-      found.verdict = Verdict::kValid;
-      found.expect_value_m = refined.test.expect_value_m;
-      found.match_ratio = refined.test.MatchRatio();
       hypotheses_.push_back(found);
       RecordCost(hypotheses_.back(), count_, refined.cost);
     }
@@ -200,11 +205,7 @@ void Localiser::Track(IterationRecord& record, const Iteration& iteration) {
                                RefinePolicy::kBestValid, config_.session.max_refined_candidates));
     h.verdict = Verdict::kNoValidPairs;
     if (const RankedCandidate* kept = results.back().Kept()) {
-      h.T_world_robot = kept->T_world_robot;
-      h.cost = kept->cost;
-      h.verdict = kept->verdict;
-      h.expect_value_m = kept->test.expect_value_m;
-      h.match_ratio = kept->test.MatchRatio();
+      TakeRefinement(h, *kept);
       RecordCost(h, count_, kept->cost);
     }
     h.validated = results.back().validated();
