@@ -21,7 +21,13 @@ void UseMapSignature(const SequenceArguments& a, Config& config) {
   if (a.point_map_path.empty() || !config.localise.map_signature) return;
   const auto summary = std::filesystem::path(a.point_map_path).parent_path() / "summary.json";
   const std::optional<double> bound = ReadMapSignatureBound(summary.string());
-  if (!bound) return;
+  if (!bound) {
+    if (!a.quiet)
+      std::cerr << "localise: no map signature in " << summary.string()
+                << ": rule 2's prior E_max is " << config.validation.max_expect_value_m
+                << " m until the posture's own signature learns\n";
+    return;
+  }
   if (!a.quiet)
     std::cerr << "localise: rule 2's prior E_max " << *bound << " m, the map's own signature ("
               << summary.string() << "; --set localise.map_signature=false for "

@@ -147,13 +147,10 @@ TEST_F(LocaliseCliTest, OnASessionsPointMapRule2sPriorIsTheMapsOwnSignatureUnles
   EXPECT_GE(bound, 0.1) << "never below the prior";
   EXPECT_LT(bound, 0.2);
   EXPECT_LT(signature["median_expect_value_m"].get<double>(), bound);
-  const auto e_max = [&](const std::string& out, std::vector<std::string> more) {
-    std::vector<std::string> words{"localise",
-                                   "--log",
-                                   Classroom("classroom.seq.jsonl"),
-                                   "--point-map",
-                                   dir_ + "/session/map.pcd",
-                                   "--out",
+  const auto e_max = [&](const std::string& map, const std::string& out,
+                         std::vector<std::string> more) {
+    std::vector<std::string> words{"localise",      "--log", Classroom("classroom.seq.jsonl"),
+                                   "--point-map",   map,     "--out",
                                    dir_ + "/" + out};
     words.insert(words.end(), more.begin(), more.end());
     const auto run = testing::RunScanloc(words, dir_);
@@ -163,10 +160,17 @@ TEST_F(LocaliseCliTest, OnASessionsPointMapRule2sPriorIsTheMapsOwnSignatureUnles
     return std::make_pair(summary["config"]["validation"]["max_expect_value_m"].get<double>(),
                           run.err);
   };
-  const auto [used, said] = e_max("signature", {});
+  const std::string map = dir_ + "/session/map.pcd";
+  const auto [used, said] = e_max(map, "signature", {});
   EXPECT_DOUBLE_EQ(used, bound);
   EXPECT_TRUE(testing::Contains(said, "the map's own signature")) << said;
-  EXPECT_DOUBLE_EQ(e_max("prior", {"--set", "localise.map_signature=false"}).first, 0.1);
+  EXPECT_DOUBLE_EQ(e_max(map, "prior", {"--set", "localise.map_signature=false"}).first, 0.1);
+  // A map copied without its summary: the prior, and the run says so.
+  std::filesystem::create_directories(dir_ + "/alone");
+  std::filesystem::copy_file(map, dir_ + "/alone/map.pcd");
+  const auto [alone, told] = e_max(dir_ + "/alone/map.pcd", "alone-run", {});
+  EXPECT_DOUBLE_EQ(alone, 0.1);
+  EXPECT_TRUE(testing::Contains(told, "no map signature in")) << told;
 }
 
 TEST_F(LocaliseCliTest, AMalformedSummaryBesideTheMapIsNamedAndNothingIsWritten) {
