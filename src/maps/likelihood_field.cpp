@@ -10,7 +10,7 @@ namespace {
 
 // The field is cut at this many σ (exp(−4.5) ≈ 0.011).
 constexpr double kCutoffSigmas = 3.0;
-// A grid larger than this many cells is refused (about 1.6 GB over all levels of floats).
+// A grid larger than this many cells is refused (64 MB a level).
 constexpr double kMaxCells = 6.4e7;
 
 }  // namespace
@@ -45,7 +45,7 @@ void LikelihoodField::Rebuild(const std::vector<Eigen::Vector2d>& points,
   width_ = static_cast<int>(std::ceil(cells.x())) + 1;
   height_ = static_cast<int>(std::ceil(cells.y())) + 1;
   levels_.resize(static_cast<std::size_t>(options.levels));
-  levels_[0].assign(static_cast<std::size_t>(width_) * height_, 0.0f);
+  levels_[0].assign(static_cast<std::size_t>(width_) * height_, 0);
   for (const Eigen::Vector2d& p : points) Splat(p, options.sigma_m);
   for (int h = 1; h < options.levels; ++h) BuildLevel(h);
 }
@@ -55,21 +55,22 @@ Eigen::Vector2i LikelihoodField::Cell(const Eigen::Vector2d& world) const {
   return {static_cast<int>(std::floor(c.x())), static_cast<int>(std::floor(c.y()))};
 }
 
-// Raises the cells within kCutoffSigmas·σ of the point to exp(−d²/2σ²) of their centre's distance.
+// Raises the cells within kCutoffSigmas·σ of the point to exp(−d²/2σ²) of their centre's distance,
+// rounded to the nearest quantum.
 void LikelihoodField::Splat(const Eigen::Vector2d& point, double sigma_m) {
   const int reach = static_cast<int>(std::ceil(kCutoffSigmas * sigma_m / resolution_m_));
   const Eigen::Vector2i centre = Cell(point);
   const double inv_two_sigma2 = 1.0 / (2.0 * sigma_m * sigma_m);
-  std::vector<float>& field = levels_[0];
+  std::vector<std::uint8_t>& field = levels_[0];
   for (int iy = std::max(0, centre.y() - reach); iy <= std::min(height_ - 1, centre.y() + reach);
        ++iy)
     for (int ix = std::max(0, centre.x() - reach); ix <= std::min(width_ - 1, centre.x() + reach);
          ++ix) {
       const Eigen::Vector2d cell_centre =
           origin_world_ + resolution_m_ * Eigen::Vector2d(ix + 0.5, iy + 0.5);
-      const float value =
-          static_cast<float>(std::exp(-(cell_centre - point).squaredNorm() * inv_two_sigma2));
-      float& cell = field[static_cast<std::size_t>(iy) * width_ + ix];
+      const auto value = static_cast<std::uint8_t>(
+          std::lround(255.0 * std::exp(-(cell_centre - point).squaredNorm() * inv_two_sigma2)));
+      std::uint8_t& cell = field[static_cast<std::size_t>(iy) * width_ + ix];
       cell = std::max(cell, value);
     }
 }
@@ -82,15 +83,15 @@ void LikelihoodField::BuildLevel(int level) {
   const std::size_t step = std::size_t{1} << (level - 1);
   const std::size_t width = static_cast<std::size_t>(width_);
   const std::size_t height = static_cast<std::size_t>(height_);
-  std::vector<float>& values = levels_[static_cast<std::size_t>(level)];
+  std::vector<std::uint8_t>& values = levels_[static_cast<std::size_t>(level)];
   values = levels_[static_cast<std::size_t>(level) - 1];
   for (std::size_t iy = 0; iy < height; ++iy) {
-    float* row = values.data() + iy * width;
+    std::uint8_t* row = values.data() + iy * width;
     for (std::size_t ix = 0; ix + step < width; ++ix) row[ix] = std::max(row[ix], row[ix + step]);
   }
   for (std::size_t iy = 0; iy + step < height; ++iy) {
-    float* row = values.data() + iy * width;
-    const float* below = row + step * width;
+    std::uint8_t* row = values.data() + iy * width;
+    const std::uint8_t* below = row + step * width;
     for (std::size_t ix = 0; ix < width; ++ix) row[ix] = std::max(row[ix], below[ix]);
   }
 }

@@ -53,7 +53,7 @@ struct WideSearchResult {
 // Searches `window` for postures of `scan` against `map` (the line map sampled at half the
 // field's resolution, and the point map's points). An empty map or a scan without a valid range
 // gives no candidate. With `storage`, the field is built there (its former contents replaced):
-// a caller searching again and again keeps one and saves building tens of megabytes afresh.
+// a caller searching again and again keeps one and saves allocating megabytes afresh.
 WideSearchResult WideSearch(const MapView& map, const LaserScan& scan, const SearchWindow& window,
                             const WideSearchOptions& options = {},
                             LikelihoodField* storage = nullptr);
