@@ -78,7 +78,8 @@ nlohmann::json HypothesesJson(const std::vector<Hypothesis>& hypotheses) {
                    {keys::kValidated, h.validated},
                    {keys::kReason, ToString(h.verdict)},
                    {keys::kExpectValueM, h.expect_value_m},
-                   {keys::kMatchRatio, h.match_ratio}});
+                   {keys::kMatchRatio, h.match_ratio},
+                   {keys::kTruncatedMeanM, h.truncated_mean_m}});
   return out;
 }
 

@@ -6,6 +6,12 @@
 
 namespace scanloc {
 
+double TruncatedMeanDistance(const LikelihoodTestResult& test, double match_threshold_m) {
+  if (test.valid_pairs <= 0) return HUGE_VAL;
+  const double ratio = test.MatchRatio();
+  return ratio * test.expect_value_m + (1.0 - ratio) * match_threshold_m;
+}
+
 void RecordCost(Hypothesis& h, std::size_t scan, double cost) {
   if (!std::isfinite(cost)) return;
   if (!h.costs.empty() && h.costs.back().scan == scan) {

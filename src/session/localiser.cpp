@@ -17,12 +17,13 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Better first: validated at the last scan, then validated more scans in all, then cheaper.
+// Better first: validated at the last scan, then validated more scans in all, then cheaper (by
+// the truncated mean distance, hypothesis_evidence.hpp).
 bool Better(const Hypothesis& a, const Hypothesis& b) {
   if (a.validated != b.validated) return a.validated;
   if (a.confirmations != b.confirmations) return a.confirmations > b.confirmations;
   if (a.confirmed_in_row != b.confirmed_in_row) return a.confirmed_in_row > b.confirmed_in_row;
-  return a.cost < b.cost;
+  return a.truncated_mean_m < b.truncated_mean_m;
 }
 
 void Count(Hypothesis& h) {
@@ -46,13 +47,16 @@ bool MovedSince(const std::optional<Pose2D>& from, const Iteration& iteration,
 }
 
 // "(x, y, θ)" of a posture, for the reasons a hypothesis was discarded.
-// The hypothesis takes a refinement's posture and what the rules said of it.
-void TakeRefinement(Hypothesis& h, const RankedCandidate& refined) {
+// The hypothesis takes a refinement's posture, what the rules said of it and its cost at `scan`.
+void TakeRefinement(Hypothesis& h, const RankedCandidate& refined, std::size_t scan,
+                    const LocalisationOptions& options) {
   h.T_world_robot = refined.T_world_robot;
   h.cost = refined.cost;
   h.verdict = refined.verdict;
   h.expect_value_m = refined.test.expect_value_m;
   h.match_ratio = refined.test.MatchRatio();
+  h.truncated_mean_m = TruncatedMeanDistance(refined.test, options.scoring.test.match_threshold_m);
+  RecordCost(h, scan, h.truncated_mean_m);
 }
 
 std::string Describe(const Pose2D& p) {
@@ -179,11 +183,10 @@ void Localiser::Search(IterationRecord& record, const Iteration& iteration) {
   for (const RankedCandidate& refined : result.refined)
     if (refined.verdict == Verdict::kValid) {
       Hypothesis found;
-      TakeRefinement(found, refined);
+      TakeRefinement(found, refined, count_, in_force_);
       found.confirmed_in_row = found.confirmations = 1;
       found.validated = true;
       hypotheses_.push_back(found);
-      RecordCost(hypotheses_.back(), count_, refined.cost);
     }
   if (record.localisation) return;
   record.localisation = std::move(result);
@@ -204,10 +207,8 @@ void Localiser::Track(IterationRecord& record, const Iteration& iteration) {
     results.push_back(Localise(View(), iteration.scan, candidates, mounting_, in_force_,
                                RefinePolicy::kBestValid, config_.session.max_refined_candidates));
     h.verdict = Verdict::kNoValidPairs;
-    if (const RankedCandidate* kept = results.back().Kept()) {
-      TakeRefinement(h, *kept);
-      RecordCost(h, count_, kept->cost);
-    }
+    if (const RankedCandidate* kept = results.back().Kept())
+      TakeRefinement(h, *kept, count_, in_force_);
     h.validated = results.back().validated();
   }
   double best_cost = HUGE_VAL;
@@ -306,7 +307,8 @@ std::string Localiser::OutCosted(const Hypothesis& h) const {
     if (!c.decided) continue;
     char text[160];
     std::snprintf(text, sizeof text,
-                  "cost %.0f %% more than %s at the last %d scans (paired t %.1f)",
+                  "truncated mean distance %.0f %% more than %s at the last %d scans (paired t "
+                  "%.1f)",
                   100.0 * c.mean_excess / c.cheaper_mean, Describe(other.T_world_robot).c_str(),
                   c.scans, c.t);
     return text;

@@ -90,6 +90,7 @@ inline constexpr const char* kSignatureExpectValueM = "signature_expect_value_m"
 inline constexpr const char* kSkipped = "skipped";
 inline constexpr const char* kSqrtDispersionM = "sqrt_dispersion_m";
 inline constexpr const char* kTWorldLaser = "T_world_laser";
+inline constexpr const char* kTruncatedMeanM = "truncated_mean_m";
 inline constexpr const char* kTWorldRobot = "T_world_robot";
 inline constexpr const char* kTimeS = "time_s";
 inline constexpr const char* kTimestampS = "timestamp_s";

@@ -35,10 +35,10 @@ struct LocaliserOptions {
   // confirmed posture is lost after lost_after_unconfirmed.
   int drop_after_unconfirmed = 2;
   int lost_after_unconfirmed = 5;
-  // A hypothesis is discarded once another cost less at the same scans beyond chance
-  // (hypothesis_evidence.hpp) and by at least this fraction of the cheaper's cost: in two
-  // identical rooms the twins' refinements came to differ by 5.6 % at every scan, a look-alike
-  // that the view tells apart by 20 % (tests/localiser_test.cpp; docs/BENCHMARKS.md).
+  // A hypothesis is discarded once another cost less (by the truncated mean distance) at the
+  // same scans beyond chance (hypothesis_evidence.hpp) and by at least this fraction of the
+  // cheaper's cost: twins in two identical rooms settle a few percent apart at every scan, a
+  // look-alike whose pillar the view shows costs 91 % more (tests/localiser_test.cpp).
   double min_cost_excess_ratio = 0.1;
   // Rule 2's prior E_max on a point map a session wrote is that map's own signature (the bound
   // in the summary.json beside it, map_signature.hpp), until the localiser's signature learned.

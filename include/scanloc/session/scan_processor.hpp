@@ -16,7 +16,8 @@
 
 namespace scanloc {
 
-// The cost (3.11) of a hypothesis at one scan that localised it.
+// The cost that tells held hypotheses apart (their truncated mean distance,
+// hypothesis_evidence.hpp) at one scan that localised one.
 struct CostAt {
   std::size_t scan = 0;
   double cost = 0.0;
@@ -37,6 +38,7 @@ struct Hypothesis {
   Verdict verdict = Verdict::kNoValidPairs;
   double expect_value_m = 0.0;
   double match_ratio = 0.0;
+  double truncated_mean_m = 0.0;  // TruncatedMeanDistance there (hypothesis_evidence.hpp)
   int searches = 0;  // global searches since it was found (the user's initial posture counts one)
   // A posture confirmed before and since lost: held until another has been validated
   // confirm_after scans in a row.
