@@ -46,7 +46,6 @@ bool MovedSince(const std::optional<Pose2D>& from, const Iteration& iteration,
          std::abs(d.yaw_rad) > options.localise_rotation_rad;
 }
 
-// "(x, y, θ)" of a posture, for the reasons a hypothesis was discarded.
 // The hypothesis takes a refinement's posture, what the rules said of it and its cost at `scan`.
 void TakeRefinement(Hypothesis& h, const RankedCandidate& refined, std::size_t scan,
                     const LocalisationOptions& options) {
@@ -59,6 +58,7 @@ void TakeRefinement(Hypothesis& h, const RankedCandidate& refined, std::size_t s
   RecordCost(h, scan, h.truncated_mean_m);
 }
 
+// "(x, y, θ)" of a posture, for the reasons a hypothesis was discarded.
 std::string Describe(const Pose2D& p) {
   char text[80];
   std::snprintf(text, sizeof text, "(%.2f, %.2f, %.3f)", p.x_m, p.y_m, p.yaw_rad);
