@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "scanloc/likelihood/candidate_ranking.hpp"
 
@@ -97,6 +98,46 @@ TEST(HypothesisEvidence, APlaceThatLeavesLoosePairsUnmatchedIsNotCheaperThanOneT
   const LikelihoodTestResult look_alike = TestOf(180, 113, 0.107);
   EXPECT_LT(LikelihoodCost(look_alike, 0.1), LikelihoodCost(truth, 0.1)) << "(3.11) prefers it";
   EXPECT_LT(TruncatedMeanDistance(truth, 0.5), 0.8 * TruncatedMeanDistance(look_alike, 0.5));
+}
+
+// A hypothesis with its costs at consecutive scans from `first_scan`, validated at all of them.
+Hypothesis Held(std::size_t first_scan, const std::vector<double>& costs) {
+  Hypothesis h = WithCosts(first_scan, costs);
+  h.validated = true;
+  h.confirmations = h.confirmed_in_row = static_cast<int>(costs.size());
+  h.truncated_mean_m = costs.back();
+  return h;
+}
+
+TEST(HypothesisEvidence, ThePlaceCheaperAtTheScansBothWereTestedAtRanksFirstNotTheOlder) {
+  // Like ACES's splice on the default map (docs/BENCHMARKS.md): a look-alike found first, and the
+  // true place found four scans later, cheaper at every scan since.
+  const Hypothesis older = Held(281, {0.257, 0.262, 0.265, 0.269, 0.261, 0.259, 0.268, 0.271});
+  const Hypothesis truth = Held(285, {0.246, 0.234, 0.240, 0.243});
+  const std::size_t since = CommonSince({older, truth});
+  EXPECT_EQ(since, 285u);
+  EXPECT_TRUE(RanksBefore(truth, older, since));
+  EXPECT_FALSE(RanksBefore(older, truth, since));
+  // Before the newer one was costed twice, the one validated at more scans leads, as before.
+  const Hypothesis found = Held(288, {0.243});
+  const std::size_t just = CommonSince({older, found});
+  EXPECT_EQ(just, 288u);
+  EXPECT_TRUE(RanksBefore(older, found, just));
+}
+
+TEST(HypothesisEvidence, APlaceValidatedAtTheLastScanOrAtMoreCommonScansRanksFirstWhateverItCosts) {
+  Hypothesis cheap = Held(10, {0.10, 0.10, 0.10, 0.10});
+  const Hypothesis costly = Held(10, {0.20, 0.20, 0.20, 0.20});
+  cheap.validated = false;
+  cheap.confirmed_in_row = 0;
+  EXPECT_TRUE(RanksBefore(costly, cheap, CommonSince({cheap, costly})));
+  cheap.validated = true;
+  cheap.confirmed_in_row = 1;  // validated at the last scan only, the other at all four
+  EXPECT_TRUE(RanksBefore(costly, cheap, CommonSince({cheap, costly})));
+  cheap.confirmed_in_row = 4;
+  EXPECT_TRUE(RanksBefore(cheap, costly, CommonSince({cheap, costly})));
+  EXPECT_EQ(CommonSince({cheap, Hypothesis{}}), std::numeric_limits<std::size_t>::max())
+      << "a hypothesis not costed yet leaves no common scans";
 }
 
 TEST(HypothesisEvidence, StudentQuantilesFallTowardTheNormalOne) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 
 namespace scanloc {
 
@@ -65,6 +66,50 @@ CostComparison CompareCosts(const Hypothesis& costlier, const Hypothesis& cheape
   out.decided = out.scans >= std::max(2, min_scans) && out.t > StudentT999(out.scans - 1) &&
                 out.mean_excess >= min_excess_ratio * out.cheaper_mean;
   return out;
+}
+
+namespace {
+
+struct CostsSince {
+  int scans = 0;
+  double mean = HUGE_VAL;
+};
+
+CostsSince Since(const Hypothesis& h, std::size_t since) {
+  CostsSince out;
+  double sum = 0.0;
+  for (const CostAt& c : h.costs)
+    if (c.scan >= since) {
+      sum += c.cost;
+      ++out.scans;
+    }
+  if (out.scans > 0) out.mean = sum / out.scans;
+  return out;
+}
+
+}  // namespace
+
+std::size_t CommonSince(const std::vector<Hypothesis>& hypotheses) {
+  std::size_t since = 0;
+  for (const Hypothesis& h : hypotheses) {
+    if (h.costs.empty()) return std::numeric_limits<std::size_t>::max();
+    since = std::max(since, h.costs.front().scan);
+  }
+  return since;
+}
+
+bool RanksBefore(const Hypothesis& a, const Hypothesis& b, std::size_t since) {
+  if (a.validated != b.validated) return a.validated;
+  const CostsSince ca = Since(a, since), cb = Since(b, since);
+  if (ca.scans >= 2 && cb.scans >= 2) {
+    const int va = std::min(a.confirmed_in_row, ca.scans);
+    const int vb = std::min(b.confirmed_in_row, cb.scans);
+    if (va != vb) return va > vb;
+    if (ca.mean != cb.mean) return ca.mean < cb.mean;
+  }
+  if (a.confirmations != b.confirmations) return a.confirmations > b.confirmations;
+  if (a.confirmed_in_row != b.confirmed_in_row) return a.confirmed_in_row > b.confirmed_in_row;
+  return a.truncated_mean_m < b.truncated_mean_m;
 }
 
 }  // namespace scanloc

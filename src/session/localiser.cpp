@@ -17,15 +17,6 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Better first: validated at the last scan, then validated more scans in all, then cheaper (by
-// the truncated mean distance, hypothesis_evidence.hpp).
-bool Better(const Hypothesis& a, const Hypothesis& b) {
-  if (a.validated != b.validated) return a.validated;
-  if (a.confirmations != b.confirmations) return a.confirmations > b.confirmations;
-  if (a.confirmed_in_row != b.confirmed_in_row) return a.confirmed_in_row > b.confirmed_in_row;
-  return a.truncated_mean_m < b.truncated_mean_m;
-}
-
 void Count(Hypothesis& h) {
   if (h.validated) {
     ++h.confirmed_in_row;
@@ -223,8 +214,9 @@ void Localiser::Track(IterationRecord& record, const Iteration& iteration) {
   }
   std::vector<std::size_t> order(hypotheses_.size());
   std::iota(order.begin(), order.end(), 0);
+  const std::size_t since = CommonSince(hypotheses_);
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return Better(hypotheses_[a], hypotheses_[b]);
+    return RanksBefore(hypotheses_[a], hypotheses_[b], since);
   });
   record.localisation = std::move(results[order.front()]);
   const RankedCandidate* kept = record.Kept();
@@ -266,7 +258,10 @@ void Localiser::Prune(IterationRecord& record) {
       record.discarded.push_back(Describe(h.T_world_robot) + ": " + why);
   }
   hypotheses_ = std::move(staying);
-  std::stable_sort(hypotheses_.begin(), hypotheses_.end(), Better);
+  const std::size_t since = CommonSince(hypotheses_);
+  std::stable_sort(
+      hypotheses_.begin(), hypotheses_.end(),
+      [&](const Hypothesis& a, const Hypothesis& b) { return RanksBefore(a, b, since); });
   std::vector<Hypothesis> kept;
   for (const Hypothesis& h : hypotheses_) {
     const bool seen = std::any_of(kept.begin(), kept.end(), [&](const Hypothesis& k) {
