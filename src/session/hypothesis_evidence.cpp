@@ -90,11 +90,14 @@ CostsSince Since(const Hypothesis& h, std::size_t since) {
 }  // namespace
 
 std::size_t CommonSince(const std::vector<Hypothesis>& hypotheses) {
+  constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
   std::size_t since = 0;
   for (const Hypothesis& h : hypotheses) {
-    if (h.costs.empty()) return std::numeric_limits<std::size_t>::max();
+    if (h.costs.empty()) return kNone;
     since = std::max(since, h.costs.front().scan);
   }
+  for (const Hypothesis& h : hypotheses)
+    if (Since(h, since).scans < 2) return kNone;
   return since;
 }
 

@@ -49,17 +49,18 @@ CostComparison CompareCosts(const Hypothesis& costlier, const Hypothesis& cheape
                             double min_excess_ratio);
 
 // The order of held hypotheses, best first (the first is the output). One validated at the
-// last scan comes first. Then, once every hypothesis was costed at two scans or more since the
-// newest of them was found (`since`, CommonSince), the one validated at more of those scans, then
-// the one whose truncated mean distance there is lower: the places are judged on the scans both
-// were tested at, not on what the older did alone. Otherwise, and on ties, the one validated at
-// more scans in all, more in a row, then cheaper at the last scan. On ACES, a look-alike found
-// first led a place 14 % cheaper at every scan both were tested at, for 100 scans of a robot
-// standing still (docs/BENCHMARKS.md).
+// last scan comes first. Then, when `since` is a scan from which every hypothesis was costed at
+// two scans or more (CommonSince), the one validated at more of those scans, then the one whose
+// mean truncated mean distance there is lower: the places are judged on the scans all were
+// tested at, not on what the older did alone. Otherwise, and on ties, the one validated at more
+// scans in all, more in a row, then cheaper at the last scan. On ACES, a look-alike found first
+// led a place cheaper at every scan both were tested at, for 100 scans of a robot standing still
+// (docs/BENCHMARKS.md).
 bool RanksBefore(const Hypothesis& a, const Hypothesis& b, std::size_t since);
 
-// The first scan of the newest cost history among `hypotheses`: from there on every one of them
-// was held (SIZE_MAX when one has no cost yet, and then no common scans are compared).
+// The first scan of the newest cost history among `hypotheses`, from which every one of them was
+// held, when each was costed at two scans or more from there; SIZE_MAX otherwise (and then no
+// common scans are compared, for any pair: the order stays one order).
 std::size_t CommonSince(const std::vector<Hypothesis>& hypotheses);
 
 // The one-sided 99.9 % quantile of Student's t with `dof` degrees of freedom (dof >= 1).
