@@ -319,6 +319,45 @@ TEST(Session, EveryRefinedCandidateIsRecordedAndTheKeptOneIsAmongThem) {
   }
 }
 
+// The loop with the odometry's heading slipping by 10° at scan 40 (a wheel spinning in a turn):
+// with heading_candidates_on_failure, the prediction alone is evaluated while it passes the rules,
+// and the turned candidates join at the slip, where it fails; the session holds through it.
+TEST(Session, TurnedCandidatesJoinOnlyWhenThePredictionFailsTheRules) {
+  Sequence sequence = LoopAroundTheRoom(3);
+  const Pose2D slip{0.0, 0.0, 10.0 * M_PI / 180.0};
+  for (std::size_t i = 40; i < sequence.iterations.size(); ++i)
+    sequence.iterations[i].odometry = *sequence.iterations[i].odometry * slip;
+  SessionOptions options;
+  options.initial_pose = sequence.truth.front();
+  options.heading_candidates_on_failure = true;
+  Session session(SessionConfig{options, {}}, {}, {}, PointMap{});
+  int alone = 0, joined = 0;
+  double worst_m = 0.0, worst_rad = 0.0;
+  for (std::size_t i = 0; i < sequence.iterations.size(); ++i) {
+    const IterationRecord r = session.Process(sequence.iterations[i]);
+    const Pose2D error = Between(sequence.truth[i], r.T_world_robot);
+    worst_m = std::max(worst_m, std::hypot(error.x_m, error.y_m));
+    worst_rad = std::max(worst_rad, std::abs(error.yaw_rad));
+    if (r.skipped || r.first) continue;
+    ASSERT_TRUE(r.localisation.has_value());
+    const std::vector<RankedCandidate>& evaluated = r.localisation->evaluated;
+    ASSERT_TRUE(evaluated.size() == 1 || evaluated.size() == 5) << "scan " << i;
+    if (evaluated.size() == 1) {
+      ++alone;
+      EXPECT_EQ(evaluated[0].rank, 0) << "scan " << i;
+    } else {
+      ++joined;
+      EXPECT_LT(evaluated[0].rank, 0) << "scan " << i;  // the prediction failed the rules
+    }
+    if (i == 40) {
+      EXPECT_EQ(evaluated.size(), 5u) << "the slip";
+    }
+  }
+  EXPECT_GT(alone, 5 * joined) << alone << " alone, " << joined << " joined";
+  EXPECT_LT(worst_m, 0.03);
+  EXPECT_LT(worst_rad, 0.01);
+}
+
 TEST(SessionOptions, AbsurdValuesAreRefused) {
   SessionOptions options;
   options.heading_step_rad = 0.0;

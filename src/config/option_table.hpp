@@ -139,6 +139,8 @@ void VisitSession(C& c, V& v) {
     "valid candidates refined, best first");
   v("session.heading_candidates_min_turn_rad", s.heading_candidates_min_turn_rad, kAngle,
     "turned candidates only when the odometry turned more than this, rad");
+  v("session.heading_candidates_on_failure", s.heading_candidates_on_failure,
+    "... and only when no other candidate passes the rules");
   v("session.localise_translation_m", s.localise_translation_m, Bounds{0, 1e3},
     "a scan is localised when the odometry moved more than this, m ...");
   v("session.localise_rotation_rad", s.localise_rotation_rad, kAngle, "... or turned this, rad");

@@ -68,6 +68,7 @@ std::vector<int> ToRefine(const std::vector<RankedCandidate>& evaluated, RefineP
   std::sort(order.begin(), order.end(),
             [&](int a, int b) { return evaluated[a].rank < evaluated[b].rank; });
   if (static_cast<int>(order.size()) > max_refined) order.resize(std::max(0, max_refined));
+  if (policy == RefinePolicy::kValidOnly) return order;
   // None valid: the cheapest by (3.11) alone is the best guess to refine.
   if (order.empty() && !evaluated.empty()) order.push_back(std::max(0, Cheapest(evaluated)));
   return order;

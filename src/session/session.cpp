@@ -172,13 +172,38 @@ std::vector<Candidate> PredictionCandidates(const Pose2D& prediction,
 
 // The heading candidates only when the odometry turned since the last localised scan (or is
 // unknown).
-std::vector<Candidate> Session::MakeCandidates(const Pose2D& prediction,
-                                               const Iteration& iteration) const {
-  const bool turning = !iteration.odometry ||
-                       std::abs(Between(last_localised_odometry_, *iteration.odometry).yaw_rad) >
-                           options_.heading_candidates_min_turn_rad;
-  return PredictionCandidates(prediction, iteration.external_candidates, turning, mounting_,
-                              options_);
+bool Session::Turning(const Iteration& iteration) const {
+  return !iteration.odometry ||
+         std::abs(Between(last_localised_odometry_, *iteration.odometry).yaw_rad) >
+             options_.heading_candidates_min_turn_rad;
+}
+
+// Localises the scan from the prediction's candidates, then `search`'s. With
+// heading_candidates_on_failure, the turned candidates join only when none of the others passes
+// the rules; the first round is then not refined, and its evaluation time is counted.
+LocalisationResult Session::LocaliseCandidates(const Pose2D& prediction, const Iteration& iteration,
+                                               const std::vector<Candidate>& search,
+                                               const LocalisationOptions& options) const {
+  const auto candidates = [&](bool turning) {
+    std::vector<Candidate> all = PredictionCandidates(prediction, iteration.external_candidates,
+                                                      turning, mounting_, options_);
+    all.insert(all.end(), search.begin(), search.end());
+    return all;
+  };
+  const bool turning = Turning(iteration);
+  double first_round_s = 0.0;
+  if (turning && options_.heading_candidates_on_failure) {
+    LocalisationResult first =
+        Localise(View(), iteration.scan, candidates(false), mounting_, options,
+                 RefinePolicy::kValidOnly, options_.max_refined_candidates);
+    if (first.best_evaluated >= 0) return first;
+    first_round_s = first.evaluate_s;
+  }
+  LocalisationResult result =
+      Localise(View(), iteration.scan, candidates(turning), mounting_, options,
+               RefinePolicy::kBestValid, options_.max_refined_candidates);
+  result.evaluate_s += first_round_s;
+  return result;
 }
 
 // Localise from the candidates (with the wide search's when lost), rule 2's E_max from the laser
@@ -187,11 +212,10 @@ std::vector<Candidate> Session::MakeCandidates(const Pose2D& prediction,
 void Session::LocaliseInto(IterationRecord& record, const Iteration& iteration) {
   LocalisationOptions options = BoundedOptions(record);
   AddMotionPrior(options, record.prediction, iteration);
-  std::vector<Candidate> candidates = MakeCandidates(record.prediction, iteration);
+  std::vector<Candidate> search;
   const bool was_lost = drift_.lost();
-  if (was_lost) AddSearchCandidates(record, iteration.scan, candidates);
-  record.localisation = Localise(View(), iteration.scan, candidates, mounting_, options,
-                                 RefinePolicy::kBestValid, options_.max_refined_candidates);
+  if (was_lost) AddSearchCandidates(record, iteration.scan, search);
+  record.localisation = LocaliseCandidates(record.prediction, iteration, search, options);
   const RankedCandidate& kept = *record.Kept();
   record.verdict = kept.verdict;
   record.validated = record.localisation->validated();

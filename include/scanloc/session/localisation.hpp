@@ -36,6 +36,7 @@ struct RankedCandidate {
 enum class RefinePolicy {
   kNone,       // none: the Likelihood Test of the candidates as given (`scanloc test`)
   kBestValid,  // the valid ones best first, up to a number; when none is valid, the cheapest
+  kValidOnly,  // the valid ones best first, up to a number; none when none is valid
   kAll,        // every candidate (`scanloc refine`, the chapter's Tables 2, 5, 6, 8)
 };
 

@@ -44,6 +44,9 @@ struct SessionOptions {
   // The turned candidates are tried only when the odometry turned more than this since the last
   // localised scan (the heading slips in turns); otherwise the prediction alone is tested.
   double heading_candidates_min_turn_rad = 0.0;
+  // With this, the turned candidates are tried only when none of the others (the prediction, the
+  // external and the wide search's candidates) passes the rules.
+  bool heading_candidates_on_failure = false;
   // The candidates the rules left valid are refined, best first, up to this many; the refined
   // postures are tested again and ranked by the rules (the chapter's refine-then-validate): in
   // fast turns two headings 5° apart may both look plausible until they are refined.
@@ -139,7 +142,10 @@ class Session : public ScanProcessor {
   MapView View() const;
   Pose2D Predict(const Iteration& iteration) const;
   bool ShouldLocalise(const Iteration& iteration) const;
-  std::vector<Candidate> MakeCandidates(const Pose2D& prediction, const Iteration& iteration) const;
+  bool Turning(const Iteration& iteration) const;
+  LocalisationResult LocaliseCandidates(const Pose2D& prediction, const Iteration& iteration,
+                                        const std::vector<Candidate>& search,
+                                        const LocalisationOptions& options) const;
   void AddSearchCandidates(IterationRecord& record, const LaserScan& scan,
                            std::vector<Candidate>& candidates) const;
   void LocaliseInto(IterationRecord& record, const Iteration& iteration);
