@@ -353,6 +353,7 @@ TEST(Session, TurnedCandidatesJoinOnlyWhenThePredictionFailsTheRules) {
       EXPECT_EQ(evaluated.size(), 5u) << "the slip";
     }
   }
+  EXPECT_GE(joined, 1) << "the turned candidates never joined";
   EXPECT_GT(alone, 5 * joined) << alone << " alone, " << joined << " joined";
   EXPECT_LT(worst_m, 0.03);
   EXPECT_LT(worst_rad, 0.01);
