@@ -199,6 +199,47 @@ void EstimateUncertainty(BuiltProblem& built, const CeresRefinerOptions& options
   }
 }
 
+// One outer iteration's Levenberg–Marquardt solve from `parameters`; the posture it returns.
+Pose2D Solve(BuiltProblem& built, const CeresRefinerOptions& options, double* parameters) {
+  ceres::Solver::Options solver_options;
+  solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+  solver_options.max_num_iterations = options.max_solver_iterations;
+  solver_options.num_threads = 1;
+  solver_options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver_options, built.problem.get(), &summary);
+  return {parameters[0], parameters[1], NormalizeAngle(parameters[2])};
+}
+
+// Where the cap leaves outer iterations that cycle: the solve after visited.back() returned
+// visited[first] (first ≥ `from`), so the iteration that starts from visited.size() starts from
+// visited[first] again, and iteration i ≥ first from visited[first + (i − first) mod period].
+struct CycleShortcut {
+  bool found = false;
+  std::size_t final_posture = 0;  // index in visited of the posture the cap's run ends at
+  std::size_t last_start = 0;     // ... and of the posture its last iteration started from
+  std::size_t period = 0;
+};
+
+CycleShortcut FindCycle(const std::vector<Pose2D>& visited, std::size_t from, const Pose2D& next,
+                        int cap) {
+  CycleShortcut cycle;
+  const auto same = [&](const Pose2D& p) {
+    return p.x_m == next.x_m && p.y_m == next.y_m && p.yaw_rad == next.yaw_rad;
+  };
+  const auto first = static_cast<std::size_t>(
+      std::find_if(visited.begin() + std::min(from, visited.size()), visited.end(), same) -
+      visited.begin());
+  const auto n = static_cast<std::size_t>(cap);
+  if (first == visited.size() || n <= visited.size()) return cycle;
+  const std::size_t period = visited.size() - first;
+  cycle.found = true;
+  cycle.period = period;
+  cycle.final_posture = first + (n - first) % period;
+  cycle.last_start = first + (n - 1 - first) % period;
+  return cycle;
+}
+
 }  // namespace
 
 const char* ToString(IncidenceWeighting weighting) {
@@ -280,23 +321,23 @@ RefinementResult RefineCeres(const MapView& map, const LaserScan& scan,
   BuiltProblem built;
   // Outlives the loop: the last problem is evaluated at the solution for the uncertainty.
   double parameters[3] = {pose.x_m, pose.y_m, pose.yaw_rad};
-  for (int outer = 0; outer < options.max_outer_iterations; ++outer) {
+  // The posture each outer iteration started from: an outer iteration is a function of it alone
+  // (its correspondences, then a deterministic solve).
+  std::vector<Pose2D> visited;
+  const auto build_at = [&](const Pose2D& at, int outer) {
     if (outer > 0 && needs_simulation)
-      simulated = Simulate(map, scan.layout, pose, scoring.simulation);
-    parameters[0] = pose.x_m;
-    parameters[1] = pose.y_m;
-    parameters[2] = pose.yaw_rad;
-    built = BuildProblem(map, scan, pose, simulated, scoring, options, fits, parameters);
+      simulated = Simulate(map, scan.layout, at, scoring.simulation);
+    parameters[0] = at.x_m;
+    parameters[1] = at.y_m;
+    parameters[2] = at.yaw_rad;
+    built = BuildProblem(map, scan, at, simulated, scoring, options, fits, parameters);
+  };
+  for (int outer = 0; outer < options.max_outer_iterations; ++outer) {
+    build_at(pose, outer);
+    visited.push_back(pose);
     result.iterations = outer + 1;
     if (built.residual_count < 3) break;
-    ceres::Solver::Options solver_options;
-    solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
-    solver_options.max_num_iterations = options.max_solver_iterations;
-    solver_options.num_threads = 1;
-    solver_options.logging_type = ceres::SILENT;
-    ceres::Solver::Summary summary;
-    ceres::Solve(solver_options, built.problem.get(), &summary);
-    const Pose2D next{parameters[0], parameters[1], NormalizeAngle(parameters[2])};
+    const Pose2D next = Solve(built, options, parameters);
     const Pose2D step = Between(pose, next);
     pose = next;
     if (std::hypot(step.x_m, step.y_m) < options.translation_tolerance_m &&
@@ -304,6 +345,19 @@ RefinementResult RefineCeres(const MapView& map, const LaserScan& scan,
       result.converged = true;
       break;
     }
+    // A posture an earlier iteration started from: the iterations cycle from there on, and the
+    // cap's posture and last problem are known without running them (the same, bit for bit).
+    // (The first iteration pairs with the scoring's simulated scan: with simulation it is not
+    // counted in a cycle.)
+    const CycleShortcut cycle =
+        FindCycle(visited, needs_simulation ? 1 : 0, next, options.max_outer_iterations);
+    if (!cycle.found) continue;
+    pose = visited[cycle.final_posture];
+    result.iterations = options.max_outer_iterations;
+    result.cycle_period = static_cast<int>(cycle.period);
+    if (cycle.last_start != visited.size() - 1)
+      build_at(visited[cycle.last_start], options.max_outer_iterations - 1);
+    break;
   }
   score = ScorePosture(map, scan, pose, scoring);
   result.T_world_laser = pose;

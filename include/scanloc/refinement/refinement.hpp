@@ -16,6 +16,10 @@ struct RefinementResult {
   Pose2D T_world_laser;    // the refined posture of the laser
   bool converged = false;  // the method's own stopping criterion was met
   int iterations = 0;      // outer iterations (Ceres: re-simulations; ED: steps examined)
+  // Ceres: the outer iterations came back to a posture they had started from, so they would
+  // cycle with this period to the cap; the cap's posture was taken without running them (the
+  // same result). 0 when they did not.
+  int cycle_period = 0;
   LikelihoodTestResult test_before, test_after;
   LikelihoodDistanceResult distance_before, distance_after;
   // Covariance of (x, y, θ) in m², m·rad, rad²; valid only when has_covariance.
