@@ -163,12 +163,44 @@ INSTANTIATE_TEST_SUITE_P(KernelsAndWeightings, BeamsResidualTest,
                                            Case{Kernel::kNone, true, "no_kernel_cosine"}),
                          [](const auto& test_info) { return test_info.param.name; });
 
-TEST(BeamsResidual, CarriesTheKernelsExcessCostInOneMoreResidual) {
-  std::vector<BeamTerm> beams(3);
-  for (BeamTerm& beam : beams) beam.line.normal = Eigen::Vector2d(-1.0, 0.0);
-  EXPECT_EQ(BeamsResidual(beams, true, nullptr).num_residuals(), 3);
+TEST(BeamsResidual, ShowsCeresFourResidualsWhateverTheBeamCount) {
+  std::mt19937 rng(3);
+  const double truth[3] = {0.0, 0.0, 0.0};
+  const std::vector<BeamTerm> beams = RandomBeams(rng, truth, truth);
+  EXPECT_EQ(BeamsResidual(beams, true, nullptr).num_residuals(), 4);
   EXPECT_EQ(BeamsResidual(beams, true, std::make_unique<ceres::CauchyLoss>(0.1)).num_residuals(),
             4);
+}
+
+// Beams that all see one wall head-on leave the posture free along the wall: the Gauss–Newton
+// matrix is singular there. The direction without information gets a zero residual and row,
+// and the cost, gradient and matrix stay the beams' own.
+TEST(BeamsResidual, ADirectionWithoutInformationKeepsTheBeamsCostAndGradient) {
+  std::vector<BeamTerm> beams;
+  for (int k = 0; k < 9; ++k) {
+    BeamTerm beam;  // bearing 0: every beam runs along x onto the wall x = 2 + k·1 cm noise
+    beam.range_m = 2.0 + 0.01 * (k % 3);
+    beam.line.normal = Eigen::Vector2d(-1.0, 0.0);
+    beam.line.offset = -2.0;
+    beams.push_back(beam);
+  }
+  for (const bool with_kernel : {false, true}) {
+    double fused_pose[3] = {0.03, 0.5, 0.0}, reference_pose[3] = {0.03, 0.5, 0.0};
+    ceres::Problem fused, reference;
+    fused.AddResidualBlock(
+        new BeamsResidual(beams, true,
+                          with_kernel ? std::make_unique<ceres::CauchyLoss>(0.1) : nullptr),
+        nullptr, fused_pose);
+    for (const BeamTerm& beam : beams)
+      reference.AddResidualBlock(new OneBeam(beam, true),
+                                 with_kernel ? new ceres::CauchyLoss(0.1) : nullptr,
+                                 reference_pose);
+    const Evaluation a = EvaluateProblem(fused), b = EvaluateProblem(reference);
+    EXPECT_NEAR(a.cost, b.cost, 1e-14) << "kernel " << with_kernel;
+    EXPECT_LT((a.gradient - b.gradient).norm(), 1e-12) << "kernel " << with_kernel;
+    EXPECT_LT((a.information - b.information).norm(), 1e-12) << "kernel " << with_kernel;
+    EXPECT_GT(a.cost, 0.0);
+  }
 }
 
 TEST(BeamsResidual, FailsWhenAPlainResidualRunsAlongItsLine) {
@@ -179,11 +211,14 @@ TEST(BeamsResidual, FailsWhenAPlainResidualRunsAlongItsLine) {
   const BeamsResidual residual({beam}, false, nullptr);
   const double pose[3] = {0.0, 0.0, 0.0};
   const double* parameters[] = {pose};
-  double value = 0.0;
-  EXPECT_FALSE(residual.Evaluate(parameters, &value, nullptr));
+  double values[BeamsResidual::kResiduals] = {};
+  EXPECT_FALSE(residual.Evaluate(parameters, values, nullptr));
   const BeamsResidual cosine({beam}, true, nullptr);
-  EXPECT_TRUE(cosine.Evaluate(parameters, &value, nullptr));
-  EXPECT_NEAR(value, -1.0, 1e-12);  // the end point (1, 0) lies 1 m below the line y = 1
+  EXPECT_TRUE(cosine.Evaluate(parameters, values, nullptr));
+  // The end point (1, 0) lies 1 m below the line y = 1: a squared residual of 1 in all.
+  double squared = 0.0;
+  for (const double value : values) squared += value * value;
+  EXPECT_NEAR(squared, 1.0, 1e-12);
 }
 
 }  // namespace

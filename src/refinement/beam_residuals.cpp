@@ -1,5 +1,6 @@
 #include "beam_residuals.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -36,7 +37,7 @@ bool BeamTerm::Evaluate(const double* pose, double cos_heading, double sin_headi
 BeamsResidual::BeamsResidual(std::vector<BeamTerm> beams, bool cosine,
                              std::unique_ptr<ceres::LossFunction> kernel)
     : beams_(std::move(beams)), cosine_(cosine), kernel_(std::move(kernel)) {
-  set_num_residuals(static_cast<int>(beams_.size()) + (kernel_ ? 1 : 0));
+  set_num_residuals(kResiduals);
   mutable_parameter_block_sizes()->push_back(3);
 }
 
@@ -44,37 +45,53 @@ bool BeamsResidual::Evaluate(double const* const* parameters, double* residuals,
                              double** jacobians) const {
   const double* pose = parameters[0];
   const double cos_heading = std::cos(pose[2]), sin_heading = std::sin(pose[2]);
-  double* jacobian = jacobians != nullptr ? jacobians[0] : nullptr;
-  double excess = 0.0;  // Σ(ρ − ẽ²)
-  for (std::size_t i = 0; i < beams_.size(); ++i) {
-    double* row = jacobian != nullptr ? jacobian + 3 * i : nullptr;
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();  // JᵀJ of the corrected beams
+  Eigen::Vector3d gradient = Eigen::Vector3d::Zero();     // Jᵀẽ
+  double squared_sum = 0.0;                               // Σẽ²
+  double excess = 0.0;                                    // Σ(ρ − ẽ²)
+  for (const BeamTerm& beam : beams_) {
     double e = 0.0;
-    if (!beams_[i].Evaluate(pose, cos_heading, sin_heading, cosine_, e, row)) return false;
-    if (!kernel_) {
-      residuals[i] = e;
-      continue;
+    Eigen::Vector3d row;
+    if (!beam.Evaluate(pose, cos_heading, sin_heading, cosine_, e, row.data())) return false;
+    if (kernel_) {
+      const double squared = e * e;
+      double rho[3];
+      kernel_->Evaluate(squared, rho);
+      const double sqrt_rho1 = std::sqrt(rho[1]);
+      double residual_scaling = sqrt_rho1, jacobian_scaling = sqrt_rho1;
+      if (squared != 0.0 && rho[2] > 0.0) {
+        const double alpha = 1.0 - std::sqrt(1.0 + 2.0 * squared * rho[2] / rho[1]);
+        residual_scaling = sqrt_rho1 / (1.0 - alpha);
+        jacobian_scaling = sqrt_rho1 * (1.0 - alpha);
+      }
+      row *= jacobian_scaling;
+      const double corrected = residual_scaling * e;
+      excess += rho[0] - corrected * corrected;
+      e = corrected;
     }
-    const double squared = e * e;
-    double rho[3];
-    kernel_->Evaluate(squared, rho);
-    const double sqrt_rho1 = std::sqrt(rho[1]);
-    double residual_scaling = sqrt_rho1, jacobian_scaling = sqrt_rho1;
-    if (squared != 0.0 && rho[2] > 0.0) {
-      const double alpha = 1.0 - std::sqrt(1.0 + 2.0 * squared * rho[2] / rho[1]);
-      residual_scaling = sqrt_rho1 / (1.0 - alpha);
-      jacobian_scaling = sqrt_rho1 * (1.0 - alpha);
-    }
-    residuals[i] = residual_scaling * e;
-    if (row != nullptr)
-      for (int j = 0; j < 3; ++j) row[j] *= jacobian_scaling;
-    excess += rho[0] - residuals[i] * residuals[i];
+    information.selfadjointView<Eigen::Lower>().rankUpdate(row);
+    gradient += e * row;
+    squared_sum += e * e;
   }
-  if (kernel_) {
-    const std::size_t last = beams_.size();
-    residuals[last] = std::sqrt(std::max(0.0, excess));
-    if (jacobian != nullptr)
-      for (int j = 0; j < 3; ++j) jacobian[3 * last + j] = 0.0;
+  information = information.selfadjointView<Eigen::Lower>();
+  // information = V·Λ·Vᵀ: J' = Λ^½·Vᵀ and r' = Λ^-½·Vᵀ·Jᵀẽ (directions without information
+  // carry none), so that J'ᵀJ' = JᵀJ and J'ᵀr' = Jᵀẽ; the remainder carries the rest of the cost.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(information);
+  const Eigen::Vector3d& lambda = eigen.eigenvalues();
+  const Eigen::Matrix3d& v = eigen.eigenvectors();
+  const double floor = kMinRelativeInformation * std::max(0.0, lambda(2));
+  double projected = 0.0;  // ‖r'‖²
+  for (int i = 0; i < 3; ++i) {
+    const bool informed = lambda(i) > floor && lambda(i) > 0.0;
+    const double root = informed ? std::sqrt(lambda(i)) : 0.0;
+    residuals[i] = informed ? v.col(i).dot(gradient) / root : 0.0;
+    projected += residuals[i] * residuals[i];
+    if (jacobians != nullptr && jacobians[0] != nullptr)
+      for (int j = 0; j < 3; ++j) jacobians[0][3 * i + j] = root * v(j, i);
   }
+  residuals[3] = std::sqrt(std::max(0.0, squared_sum - projected + excess));
+  if (jacobians != nullptr && jacobians[0] != nullptr)
+    for (int j = 0; j < 3; ++j) jacobians[0][9 + j] = 0.0;
   return true;
 }
 

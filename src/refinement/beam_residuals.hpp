@@ -49,10 +49,17 @@ struct BeamTerm {
 // function (Ceres' bookkeeping per block costs more than the residuals themselves). Per beam,
 // with s = e² and (ρ, ρ', ρ'') the kernel at s, Ceres' corrector (ceres/corrector.cc) scales
 // the residual and its Jacobian row by √ρ' when ρ'' ≤ 0 (Cauchy, Huber and Tukey always), else
-// by √ρ'/(1 − α) and √ρ'·(1 − α), α = 1 − √(1 + 2sρ''/ρ'). The cost, ½Σρ, exceeds half the
-// corrected residuals' squared norm by ½Σ(ρ − ẽ²), ≥ 0 for a concave kernel (ρ ≥ sρ'): one more
-// residual carries it with a zero Jacobian row, so it adds to the cost and leaves the model's
-// slope and curvature alone. Without a kernel the residuals are the plain ones.
+// by √ρ'/(1 − α) and √ρ'·(1 − α), α = 1 − √(1 + 2sρ''/ρ'). Without a kernel the residuals are
+// the plain ones.
+//
+// Ceres sees the corrected beams (ẽ, J) through four residuals, whatever their number: with
+// JᵀJ = V·Λ·Vᵀ, three residuals r' = Λ^-½·Vᵀ·Jᵀẽ with Jacobian J' = Λ^½·Vᵀ, so that
+// J'ᵀJ' = JᵀJ and J'ᵀr' = Jᵀẽ, and a fourth, with a zero Jacobian row, carrying the rest of the
+// cost: √(‖ẽ‖² − ‖r'‖² + Σ(ρ − ẽ²)), where Σ(ρ − ẽ²) ≥ 0 for a concave kernel (ρ ≥ sρ').
+// The cost ½Σρ, the gradient, the Gauss–Newton matrix, its column norms (Ceres' Jacobi
+// scaling) and the model cost of any step ‖J·δ + ẽ‖² are the same as the beams' own, so
+// Levenberg–Marquardt takes the same steps (to rounding), while Ceres' work per evaluation
+// (the dense Jacobian, its scaling, JᵀJ) no longer grows with the beams.
 class BeamsResidual : public ceres::CostFunction {
  public:
   BeamsResidual(std::vector<BeamTerm> beams, bool cosine,
@@ -62,6 +69,12 @@ class BeamsResidual : public ceres::CostFunction {
                 double** jacobians) const override;
 
   std::size_t beam_count() const { return beams_.size(); }
+
+  // r' (3), the remainder (1).
+  static constexpr int kResiduals = 4;
+  // Eigen-directions of JᵀJ with less than this fraction of the largest eigenvalue carry no
+  // information (rounding): their residual and Jacobian row are zero.
+  static constexpr double kMinRelativeInformation = 1e-14;
 
  private:
   std::vector<BeamTerm> beams_;
