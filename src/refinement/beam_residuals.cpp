@@ -45,10 +45,12 @@ bool BeamsResidual::Evaluate(double const* const* parameters, double* residuals,
                              double** jacobians) const {
   const double* pose = parameters[0];
   const double cos_heading = std::cos(pose[2]), sin_heading = std::sin(pose[2]);
-  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();  // JᵀJ of the corrected beams
-  Eigen::Vector3d gradient = Eigen::Vector3d::Zero();     // Jᵀẽ
-  double squared_sum = 0.0;                               // Σẽ²
-  double excess = 0.0;                                    // Σ(ρ − ẽ²)
+  // JᵀJ of the corrected beams by its upper triangle (xx, xy, xθ, yy, yθ, θθ), summed by hand:
+  // Eigen's rank update of a 3 × 3 is a call per beam.
+  double upper[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  Eigen::Vector3d gradient = Eigen::Vector3d::Zero();  // Jᵀẽ
+  double squared_sum = 0.0;                            // Σẽ²
+  double excess = 0.0;                                 // Σ(ρ − ẽ²)
   for (const BeamTerm& beam : beams_) {
     double e = 0.0;
     Eigen::Vector3d row;
@@ -69,11 +71,18 @@ bool BeamsResidual::Evaluate(double const* const* parameters, double* residuals,
       excess += rho[0] - corrected * corrected;
       e = corrected;
     }
-    information.selfadjointView<Eigen::Lower>().rankUpdate(row);
+    upper[0] += row(0) * row(0);
+    upper[1] += row(0) * row(1);
+    upper[2] += row(0) * row(2);
+    upper[3] += row(1) * row(1);
+    upper[4] += row(1) * row(2);
+    upper[5] += row(2) * row(2);
     gradient += e * row;
     squared_sum += e * e;
   }
-  information = information.selfadjointView<Eigen::Lower>();
+  Eigen::Matrix3d information;
+  information << upper[0], upper[1], upper[2], upper[1], upper[3], upper[4], upper[2], upper[4],
+      upper[5];
   // information = V·Λ·Vᵀ: J' = Λ^½·Vᵀ and r' = Λ^-½·Vᵀ·Jᵀẽ (directions without information
   // carry none), so that J'ᵀJ' = JᵀJ and J'ᵀr' = Jᵀẽ; the remainder carries the rest of the cost.
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(information);
