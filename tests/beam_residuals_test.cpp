@@ -32,18 +32,36 @@ class OneBeam : public ceres::SizedCostFunction<1, 3> {
 
 enum class Kernel { kNone, kCauchy, kHuber, kTukey };
 
+double KernelScale(Kernel kernel) {
+  return kernel == Kernel::kTukey ? 0.3 : 0.1;
+}
+
 std::unique_ptr<ceres::LossFunction> MakeKernel(Kernel kernel) {
   switch (kernel) {
     case Kernel::kCauchy:
-      return std::make_unique<ceres::CauchyLoss>(0.1);
+      return std::make_unique<ceres::CauchyLoss>(KernelScale(kernel));
     case Kernel::kHuber:
-      return std::make_unique<ceres::HuberLoss>(0.1);
+      return std::make_unique<ceres::HuberLoss>(KernelScale(kernel));
     case Kernel::kTukey:
-      return std::make_unique<ceres::TukeyLoss>(0.3);
+      return std::make_unique<ceres::TukeyLoss>(KernelScale(kernel));
     case Kernel::kNone:
       break;
   }
   return nullptr;
+}
+
+BeamKernel MakeBeamKernel(Kernel kernel) {
+  switch (kernel) {
+    case Kernel::kCauchy:
+      return BeamKernel(RobustKernel::kCauchy, KernelScale(kernel));
+    case Kernel::kHuber:
+      return BeamKernel(RobustKernel::kHuber, KernelScale(kernel));
+    case Kernel::kTukey:
+      return BeamKernel(RobustKernel::kTukey, KernelScale(kernel));
+    case Kernel::kNone:
+      break;
+  }
+  return {};
 }
 
 // Beams of a laser at `truth` seeing random lines, with range noise and a tenth of outliers;
@@ -128,7 +146,7 @@ TEST_P(BeamsResidualTest, MatchesOneBlockPerBeamWithCeresLoss) {
     double fused_pose[3] = {start[0], start[1], start[2]};
     double reference_pose[3] = {start[0], start[1], start[2]};
     ceres::Problem fused;
-    BeamsResidual* fused_residual = new BeamsResidual(beams, c.cosine, MakeKernel(c.kernel));
+    BeamsResidual* fused_residual = new BeamsResidual(beams, c.cosine, MakeBeamKernel(c.kernel));
     fused.AddResidualBlock(fused_residual, nullptr, fused_pose);
     ceres::Problem reference;
     for (const BeamTerm& beam : beams)
@@ -167,9 +185,8 @@ TEST(BeamsResidual, ShowsCeresFourResidualsWhateverTheBeamCount) {
   std::mt19937 rng(3);
   const double truth[3] = {0.0, 0.0, 0.0};
   const std::vector<BeamTerm> beams = RandomBeams(rng, truth, truth);
-  EXPECT_EQ(BeamsResidual(beams, true, nullptr).num_residuals(), 4);
-  EXPECT_EQ(BeamsResidual(beams, true, std::make_unique<ceres::CauchyLoss>(0.1)).num_residuals(),
-            4);
+  EXPECT_EQ(BeamsResidual(beams, true).num_residuals(), 4);
+  EXPECT_EQ(BeamsResidual(beams, true, MakeBeamKernel(Kernel::kCauchy)).num_residuals(), 4);
 }
 
 // Beams that all see one wall head-on leave the posture free along the wall: the Gauss–Newton
@@ -189,7 +206,7 @@ TEST(BeamsResidual, ADirectionWithoutInformationKeepsTheBeamsCostAndGradient) {
     ceres::Problem fused, reference;
     fused.AddResidualBlock(
         new BeamsResidual(beams, true,
-                          with_kernel ? std::make_unique<ceres::CauchyLoss>(0.1) : nullptr),
+                          with_kernel ? MakeBeamKernel(Kernel::kCauchy) : BeamKernel()),
         nullptr, fused_pose);
     for (const BeamTerm& beam : beams)
       reference.AddResidualBlock(new OneBeam(beam, true),
@@ -203,17 +220,45 @@ TEST(BeamsResidual, ADirectionWithoutInformationKeepsTheBeamsCostAndGradient) {
   }
 }
 
+// The refinement's kernels replace Ceres' loss functions inside the beams' block: they must give
+// the very same bits, from zero through the kernels' bends to far outliers, or the refinement's
+// steps (and every session's output) would move.
+TEST(BeamKernel, EvaluatesToTheBitAsCeresLossFunctions) {
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> exponent(-12.0, 3.0);
+  std::vector<double> squares = {0.0, 0.01, 0.09, 0.0100000001, 0.0899999999, 1.0};
+  for (int i = 0; i < 2000; ++i) squares.push_back(std::pow(10.0, exponent(rng)));
+  for (const Kernel kernel : {Kernel::kCauchy, Kernel::kHuber, Kernel::kTukey}) {
+    const std::unique_ptr<ceres::LossFunction> reference = MakeKernel(kernel);
+    const BeamKernel inline_kernel = MakeBeamKernel(kernel);
+    for (const double s : squares) {
+      double expected[3], got[3];
+      reference->Evaluate(s, expected);
+      inline_kernel.Evaluate(s, got);
+      for (int k = 0; k < 3; ++k)
+        ASSERT_EQ(got[k], expected[k])
+            << "kernel " << static_cast<int>(kernel) << " s " << s << " derivative " << k;
+    }
+  }
+  double none[3];
+  BeamKernel().Evaluate(0.25, none);
+  EXPECT_EQ(none[0], 0.25);
+  EXPECT_EQ(none[1], 1.0);
+  EXPECT_EQ(none[2], 0.0);
+  EXPECT_FALSE(BeamKernel().robust());
+}
+
 TEST(BeamsResidual, FailsWhenAPlainResidualRunsAlongItsLine) {
   BeamTerm beam;  // bearing 0, so from heading 0 the beam runs along x
   beam.range_m = 1.0;
   beam.line.normal = Eigen::Vector2d(0.0, 1.0);
   beam.line.offset = 1.0;
-  const BeamsResidual residual({beam}, false, nullptr);
+  const BeamsResidual residual({beam}, false);
   const double pose[3] = {0.0, 0.0, 0.0};
   const double* parameters[] = {pose};
   double values[BeamsResidual::kResiduals] = {};
   EXPECT_FALSE(residual.Evaluate(parameters, values, nullptr));
-  const BeamsResidual cosine({beam}, true, nullptr);
+  const BeamsResidual cosine({beam}, true);
   EXPECT_TRUE(cosine.Evaluate(parameters, values, nullptr));
   // The end point (1, 0) lies 1 m below the line y = 1: a squared residual of 1 in all.
   double squared = 0.0;

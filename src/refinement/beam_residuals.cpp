@@ -6,37 +6,8 @@
 
 namespace scanloc {
 
-bool BeamTerm::Evaluate(const double* pose, double cos_heading, double sin_heading, bool cosine,
-                        double& residual, double* jacobian) const {
-  const double c = cos_heading * cos_bearing - sin_heading * sin_bearing;
-  const double s = sin_heading * cos_bearing + cos_heading * sin_bearing;
-  const Eigen::Vector2d& n = line.normal;
-  const double nu = n.x() * c + n.y() * s;
-  const double nu_dot = -n.x() * s + n.y() * c;
-  const double np = n.x() * pose[0] + n.y() * pose[1];
-  if (cosine) {
-    residual = np + range_m * nu - line.offset;
-    if (jacobian != nullptr) {
-      jacobian[0] = n.x();
-      jacobian[1] = n.y();
-      jacobian[2] = range_m * nu_dot;
-    }
-    return true;
-  }
-  if (std::abs(nu) < 1e-12) return false;
-  const double along = line.offset - np;
-  residual = range_m - along / nu;
-  if (jacobian != nullptr) {
-    jacobian[0] = n.x() / nu;
-    jacobian[1] = n.y() / nu;
-    jacobian[2] = along * nu_dot / (nu * nu);
-  }
-  return true;
-}
-
-BeamsResidual::BeamsResidual(std::vector<BeamTerm> beams, bool cosine,
-                             std::unique_ptr<ceres::LossFunction> kernel)
-    : beams_(std::move(beams)), cosine_(cosine), kernel_(std::move(kernel)) {
+BeamsResidual::BeamsResidual(std::vector<BeamTerm> beams, bool cosine, BeamKernel kernel)
+    : beams_(std::move(beams)), cosine_(cosine), kernel_(kernel) {
   set_num_residuals(kResiduals);
   mutable_parameter_block_sizes()->push_back(3);
 }
@@ -55,10 +26,10 @@ bool BeamsResidual::Evaluate(double const* const* parameters, double* residuals,
     double e = 0.0;
     Eigen::Vector3d row;
     if (!beam.Evaluate(pose, cos_heading, sin_heading, cosine_, e, row.data())) return false;
-    if (kernel_) {
+    if (kernel_.robust()) {
       const double squared = e * e;
       double rho[3];
-      kernel_->Evaluate(squared, rho);
+      kernel_.Evaluate(squared, rho);
       const double sqrt_rho1 = std::sqrt(rho[1]);
       double residual_scaling = sqrt_rho1, jacobian_scaling = sqrt_rho1;
       if (squared != 0.0 && rho[2] > 0.0) {

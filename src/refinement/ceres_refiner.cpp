@@ -22,21 +22,6 @@ namespace {
 // Fewer beams than this per core are paired on one thread (a thread costs tens of µs).
 constexpr std::size_t kMinBeamsPerThread = 60;
 
-ceres::LossFunction* MakeLoss(const LikelihoodDistanceOptions& distance) {
-  // Ceres' losses act on s = residual²; with a = c they are the Likelihood Distance's kernels
-  // (up to a constant factor).
-  const double c = distance.scale_m;
-  switch (distance.kernel) {
-    case RobustKernel::kCauchy:
-      return new ceres::CauchyLoss(c);
-    case RobustKernel::kHuber:
-      return new ceres::HuberLoss(c);
-    case RobustKernel::kTukey:
-      return new ceres::TukeyLoss(c);
-  }
-  return nullptr;
-}
-
 PointLineFitOptions LineFitOptions(const CeresRefinerOptions& options) {
   return {options.line_fit_radius_m, options.line_fit_neighbours, options.max_line_thickness};
 }
@@ -135,8 +120,10 @@ BuiltProblem BuildProblem(const MapView& map, const LaserScan& scan, const Pose2
   }
   built.residual_count = static_cast<int>(beams.size());
   if (beams.empty()) return built;
+  // The kernels act on s = residual²; with a = c they are the Likelihood Distance's (up to a
+  // constant factor).
   built.residual = std::make_unique<BeamsResidual>(
-      std::move(beams), cosine, std::unique_ptr<ceres::LossFunction>(MakeLoss(scoring.distance)));
+      std::move(beams), cosine, BeamKernel(scoring.distance.kernel, scoring.distance.scale_m));
   built.beams_block = built.problem->AddResidualBlock(built.residual.get(), nullptr, parameters);
   if (options.prior) {
     built.prior = std::make_unique<PriorResidual>(
