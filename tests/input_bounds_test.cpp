@@ -83,6 +83,23 @@ TEST(SplitFieldsTest, StopsOneFieldPastTheLimit) {
   EXPECT_EQ(SplitFields("  a\tb  # c d", 5), (std::vector<std::string>{"a", "b"}));
 }
 
+// The reader's overload reuses the strings of the line before: what they held must not leak into
+// the next line's fields, whether it has more fields, fewer, or none.
+TEST(SplitFieldsTest, ReusedFieldsHoldOnlyTheNewLine) {
+  std::vector<std::string> fields;
+  SplitFields("FLASER 3 a-rather-long-field-on-the-heap 2.5\r\n", 10, fields);
+  EXPECT_EQ(fields,
+            (std::vector<std::string>{"FLASER", "3", "a-rather-long-field-on-the-heap", "2.5"}));
+  SplitFields("\tODOM 1\v2 3 4 5 6 7", 10, fields);
+  EXPECT_EQ(fields, (std::vector<std::string>{"ODOM", "1", "2", "3", "4", "5", "6", "7"}));
+  SplitFields("x # the rest is a comment", 10, fields);
+  EXPECT_EQ(fields, std::vector<std::string>{"x"});
+  SplitFields(" \f # only a comment", 10, fields);
+  EXPECT_TRUE(fields.empty());
+  SplitFields("a b c d e f", 2, fields);
+  EXPECT_EQ(fields, (std::vector<std::string>{"a", "b", "c"}));
+}
+
 // Every text reader refuses a line over kMaxLineBytes (here a 17 MiB line of digits without
 // newline, the 1 GB no-newline file in small) with the file and line.
 class OverlongLineTest : public TemporaryDirTest {

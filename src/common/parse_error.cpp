@@ -8,16 +8,38 @@
 
 namespace scanloc {
 
-std::vector<std::string> SplitFields(const std::string& line, std::size_t max_fields) {
+namespace {
+
+bool IsFieldSpace(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r';
+}
+
+}  // namespace
+
+void SplitFields(const std::string& line, std::size_t max_fields,
+                 std::vector<std::string>& fields) {
   const std::size_t end = std::min(line.find('#'), line.size());
-  constexpr const char* kSpaces = " \t\n\v\f\r";
-  std::vector<std::string> fields;
-  std::size_t begin = line.find_first_not_of(kSpaces);
-  while (begin < end && fields.size() <= max_fields) {
-    const std::size_t stop = std::min(line.find_first_of(kSpaces, begin), end);
-    fields.push_back(line.substr(begin, stop - begin));
-    begin = line.find_first_not_of(kSpaces, stop);
+  std::size_t count = 0;
+  std::size_t begin = 0;
+  while (count <= max_fields) {
+    while (begin < end && IsFieldSpace(line[begin])) ++begin;
+    if (begin == end) break;
+    std::size_t stop = begin;
+    while (stop < end && !IsFieldSpace(line[stop])) ++stop;
+    // Assigned into the strings already there: their buffers are reused line after line.
+    if (count < fields.size())
+      fields[count].assign(line, begin, stop - begin);
+    else
+      fields.emplace_back(line, begin, stop - begin);
+    ++count;
+    begin = stop;
   }
+  fields.resize(count);
+}
+
+std::vector<std::string> SplitFields(const std::string& line, std::size_t max_fields) {
+  std::vector<std::string> fields;
+  SplitFields(line, max_fields, fields);
   return fields;
 }
 

@@ -129,7 +129,7 @@ struct CarmenReader::Impl {
 
   bool Next(CarmenRecord& record) {
     while (ReadLine()) {
-      fields = SplitFields(text, carmen::kMaxMessageFields);  // also drops `#` comments
+      SplitFields(text, carmen::kMaxMessageFields, fields);  // also drops `#` comments
       if (fields.empty()) continue;
       const MessageFields message(fields, path, line);
       if (fields.size() > carmen::kMaxMessageFields)

@@ -27,6 +27,8 @@ class ParseError : public std::runtime_error {
 // without a long line costing a string per field.
 std::vector<std::string> SplitFields(const std::string& line,
                                      std::size_t max_fields = static_cast<std::size_t>(-1) - 1);
+// The same into `fields`, reusing its strings (a log's lines, one after another).
+void SplitFields(const std::string& line, std::size_t max_fields, std::vector<std::string>& fields);
 
 // Parses a finite double or throws ParseError naming `what` (e.g. "x1 in metres").
 double ParseFiniteDouble(const std::string& field, const std::string& file, std::size_t line,
