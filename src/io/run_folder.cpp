@@ -12,6 +12,7 @@
 #include "scanloc/common/parse_error.hpp"
 #include "scanloc/io/candidate_report.hpp"
 #include "scanloc/io/g2o_file.hpp"
+#include "scanloc/io/json_text.hpp"
 #include "scanloc/io/occupancy_grid_io.hpp"
 #include "scanloc/io/record_keys.hpp"
 #include "scanloc/maps/point_map_io.hpp"
@@ -239,7 +240,10 @@ void RunFolder::Record(const IterationRecord& record) {
     RemoveFiles(directory_, kFinalFiles);
   }
   appended_ = true;
-  records_ << ToJson(record).dump() << '\n';
+  std::string line;
+  AppendJsonText(ToJson(record), line);
+  line += '\n';
+  records_ << line;
   records_.flush();  // a line is complete on disk before the next iteration starts
   if (!records_)     // the failed write(2)'s errno, e.g. "No space left on device"
     throw std::runtime_error("cannot write " + Path("iterations.jsonl") + ": " +
