@@ -78,37 +78,51 @@ void PrintRefinementTable(std::ostream& out, const LocalisationResult& result) {
     out << "problem: no refined candidate passed the validation rules\n";
 }
 
+// The objects of every record are built member by member: nlohmann's initializer lists build
+// a two-element array per member first (twice the time, a scan's record after record).
+
 nlohmann::json ToJson(const LikelihoodTestResult& t) {
-  return {
-      {keys::kValidPairs, t.valid_pairs},     {keys::kMatchPairs, t.match_pairs},
-      {keys::kMatchRatio, t.MatchRatio()},    {keys::kExpectValueM, t.expect_value_m},
-      {keys::kDispersionM2, t.dispersion_m2}, {keys::kSqrtDispersionM, std::sqrt(t.dispersion_m2)},
-      {keys::kHistogram, t.histogram}};
+  nlohmann::json out = nlohmann::json::object();
+  out[keys::kValidPairs] = t.valid_pairs;
+  out[keys::kMatchPairs] = t.match_pairs;
+  out[keys::kMatchRatio] = t.MatchRatio();
+  out[keys::kExpectValueM] = t.expect_value_m;
+  out[keys::kDispersionM2] = t.dispersion_m2;
+  out[keys::kSqrtDispersionM] = std::sqrt(t.dispersion_m2);
+  out[keys::kHistogram] = t.histogram;
+  return out;
 }
 
 nlohmann::json ToJson(const LikelihoodDistanceResult& d) {
-  return {{keys::kValidPairs, d.valid_pairs},
-          {keys::kWeightedPairs, d.weighted_pairs},
-          {keys::kExpectValueM, d.expect_value_m},
-          {keys::kDispersionM2, d.dispersion_m2},
-          {keys::kCostM2, d.cost_m2}};
+  nlohmann::json out = nlohmann::json::object();
+  out[keys::kValidPairs] = d.valid_pairs;
+  out[keys::kWeightedPairs] = d.weighted_pairs;
+  out[keys::kExpectValueM] = d.expect_value_m;
+  out[keys::kDispersionM2] = d.dispersion_m2;
+  out[keys::kCostM2] = d.cost_m2;
+  return out;
 }
 
 nlohmann::json ToJson(const Pose2D& p) {
-  return {{keys::kXM, p.x_m}, {keys::kYM, p.y_m}, {keys::kYawRad, p.yaw_rad}};
+  nlohmann::json out = nlohmann::json::object();
+  out[keys::kXM] = p.x_m;
+  out[keys::kYM] = p.y_m;
+  out[keys::kYawRad] = p.yaw_rad;
+  return out;
 }
 
 nlohmann::json ToJson(const RefinementResult& r) {
-  nlohmann::json out = {{keys::kTWorldLaser, ToJson(r.T_world_laser)},
-                        {keys::kConverged, r.converged},
-                        {keys::kIterations, r.iterations},
-                        {keys::kLikelihoodTestBefore, ToJson(r.test_before)},
-                        {keys::kLikelihoodTestAfter, ToJson(r.test_after)},
-                        {keys::kLikelihoodDistanceBefore, ToJson(r.distance_before)},
-                        {keys::kLikelihoodDistanceAfter, ToJson(r.distance_after)},
-                        {keys::kDegenerate, r.degenerate},
-                        {keys::kDegeneracy, r.degeneracy},
-                        {keys::kTimeS, r.time_s}};
+  nlohmann::json out = nlohmann::json::object();
+  out[keys::kTWorldLaser] = ToJson(r.T_world_laser);
+  out[keys::kConverged] = r.converged;
+  out[keys::kIterations] = r.iterations;
+  out[keys::kLikelihoodTestBefore] = ToJson(r.test_before);
+  out[keys::kLikelihoodTestAfter] = ToJson(r.test_after);
+  out[keys::kLikelihoodDistanceBefore] = ToJson(r.distance_before);
+  out[keys::kLikelihoodDistanceAfter] = ToJson(r.distance_after);
+  out[keys::kDegenerate] = r.degenerate;
+  out[keys::kDegeneracy] = r.degeneracy;
+  out[keys::kTimeS] = r.time_s;
   if (r.has_covariance) {
     nlohmann::json rows = nlohmann::json::array();
     for (int i = 0; i < 3; ++i)
@@ -143,16 +157,18 @@ nlohmann::json RefinedToJson(const LocalisationResult& result) {
 
 nlohmann::json EvaluatedToJson(const LocalisationResult& result) {
   nlohmann::json candidates = nlohmann::json::array();
-  for (const auto& c : result.evaluated)
-    candidates.push_back({{keys::kLabel, c.candidate.label},
-                          {keys::kTWorldRobot, ToJson(c.candidate.T_world_robot)},
-                          {keys::kTWorldLaser, ToJson(c.T_world_laser)},
-                          {keys::kLikelihoodTest, ToJson(c.test)},
-                          {keys::kLikelihoodDistance, ToJson(c.distance)},
-                          {keys::kCost, c.cost},
-                          {keys::kValid, c.verdict == Verdict::kValid},
-                          {keys::kReason, ToString(c.verdict)},
-                          {keys::kRank, c.rank}});
+  for (const auto& c : result.evaluated) {
+    nlohmann::json& candidate = candidates.emplace_back(nlohmann::json::object());
+    candidate[keys::kLabel] = c.candidate.label;
+    candidate[keys::kTWorldRobot] = ToJson(c.candidate.T_world_robot);
+    candidate[keys::kTWorldLaser] = ToJson(c.T_world_laser);
+    candidate[keys::kLikelihoodTest] = ToJson(c.test);
+    candidate[keys::kLikelihoodDistance] = ToJson(c.distance);
+    candidate[keys::kCost] = c.cost;
+    candidate[keys::kValid] = c.verdict == Verdict::kValid;
+    candidate[keys::kReason] = ToString(c.verdict);
+    candidate[keys::kRank] = c.rank;
+  }
   nlohmann::json out = nlohmann::json::object();
   out[keys::kCandidates] = std::move(candidates);  // moved: an initializer list would copy them
   out[keys::kBest] = BestLabel(result.evaluated, result.best_evaluated);

@@ -25,15 +25,18 @@ namespace {
 // The refinements of one localisation, each re-validated, as the report lists them.
 nlohmann::json RefinedCandidatesJson(const LocalisationResult& localisation) {
   nlohmann::json refined = nlohmann::json::array();
-  for (const RankedCandidate& candidate : localisation.refined)
-    refined.push_back({{keys::kCandidate, candidate.candidate.label},
-                       {keys::kTWorldLaser, ToJson(candidate.T_world_laser)},
-                       {keys::kCost, candidate.cost},
-                       {keys::kRank, candidate.rank},
-                       {keys::kValid, candidate.verdict == Verdict::kValid},
-                       {keys::kReason, ToString(candidate.verdict)},
-                       {keys::kExpectValueM, candidate.test.expect_value_m},
-                       {keys::kMatchRatio, candidate.test.MatchRatio()}});
+  for (const RankedCandidate& candidate : localisation.refined) {
+    // Member by member, as the candidate reports (see candidate_report.cpp).
+    nlohmann::json& out = refined.emplace_back(nlohmann::json::object());
+    out[keys::kCandidate] = candidate.candidate.label;
+    out[keys::kTWorldLaser] = ToJson(candidate.T_world_laser);
+    out[keys::kCost] = candidate.cost;
+    out[keys::kRank] = candidate.rank;
+    out[keys::kValid] = candidate.verdict == Verdict::kValid;
+    out[keys::kReason] = ToString(candidate.verdict);
+    out[keys::kExpectValueM] = candidate.test.expect_value_m;
+    out[keys::kMatchRatio] = candidate.test.MatchRatio();
+  }
   return refined;
 }
 
@@ -120,23 +123,24 @@ nlohmann::json ToJson(const IterationRecord& r) {
   const LocalisationResult* localisation = r.localisation ? &*r.localisation : nullptr;
   const double evaluate_s = localisation ? localisation->evaluate_s : 0.0;
   const double refine_s = localisation ? localisation->refine_s : 0.0;
-  nlohmann::json out = {{keys::kIndex, r.index},
-                        {keys::kTimestampS, r.timestamp_s},
-                        {keys::kOrigin, r.origin},
-                        {keys::kSkipped, r.skipped},
-                        {keys::kFirst, r.first},
-                        {keys::kPrediction, ToJson(r.prediction)},
-                        {keys::kTWorldRobot, ToJson(r.T_world_robot)},
-                        {keys::kValidated, r.validated},
-                        {keys::kReason, ToString(r.verdict)},
-                        {keys::kInserted, r.inserted},
-                        {keys::kCarved, r.carved},
-                        {keys::kMapPoints, r.map_points},
-                        {keys::kTimingsMs,
-                         {{keys::kEvaluate, 1e3 * evaluate_s},
-                          {keys::kRefine, 1e3 * refine_s},
-                          {keys::kInsert, 1e3 * r.insert_s},
-                          {keys::kTotal, 1e3 * r.total_s}}}};
+  nlohmann::json out = nlohmann::json::object();  // member by member (see candidate_report.cpp)
+  out[keys::kIndex] = r.index;
+  out[keys::kTimestampS] = r.timestamp_s;
+  out[keys::kOrigin] = r.origin;
+  out[keys::kSkipped] = r.skipped;
+  out[keys::kFirst] = r.first;
+  out[keys::kPrediction] = ToJson(r.prediction);
+  out[keys::kTWorldRobot] = ToJson(r.T_world_robot);
+  out[keys::kValidated] = r.validated;
+  out[keys::kReason] = ToString(r.verdict);
+  out[keys::kInserted] = r.inserted;
+  out[keys::kCarved] = r.carved;
+  out[keys::kMapPoints] = r.map_points;
+  nlohmann::json& timings = out[keys::kTimingsMs];
+  timings[keys::kEvaluate] = 1e3 * evaluate_s;
+  timings[keys::kRefine] = 1e3 * refine_s;
+  timings[keys::kInsert] = 1e3 * r.insert_s;
+  timings[keys::kTotal] = 1e3 * r.total_s;
   if (r.lost) out[keys::kLost] = true;
   if (r.recovered) out[keys::kRecovered] = true;
   if (!r.state.empty()) {
