@@ -13,11 +13,13 @@ double ProbabilityOf(double log_odds) {
   return 1.0 - 1.0 / (1.0 + std::exp(log_odds));
 }
 
-// Calls visit(x, y) for every cell a segment from `from` to `to` (in cell units) crosses before the
-// cell of `to` (Amanatides & Woo's traversal).
+// Calls visit(cell) for every cell a segment from `from` to `to` (in cell units) crosses before
+// the cell of `to` (Amanatides & Woo's traversal), cell = y·width + x of a row-major grid.
 template <typename Visit>
-void TraverseCells(const Eigen::Vector2d& from, const Eigen::Vector2d& to, Visit&& visit) {
-  long x = static_cast<long>(std::floor(from.x())), y = static_cast<long>(std::floor(from.y()));
+void TraverseCells(const Eigen::Vector2d& from, const Eigen::Vector2d& to, std::size_t width,
+                   Visit&& visit) {
+  const long x = static_cast<long>(std::floor(from.x())),
+             y = static_cast<long>(std::floor(from.y()));
   const long end_x = static_cast<long>(std::floor(to.x()));
   const long end_y = static_cast<long>(std::floor(to.y()));
   const Eigen::Vector2d d = to - from;
@@ -29,15 +31,19 @@ void TraverseCells(const Eigen::Vector2d& from, const Eigen::Vector2d& to, Visit
       d.x() != 0.0 ? ((step_x > 0 ? x + 1 - from.x() : from.x() - x) * delta_x) : kInfinity;
   double next_y =
       d.y() != 0.0 ? ((step_y > 0 ? y + 1 - from.y() : from.y() - y) * delta_y) : kInfinity;
+  // The cell index steps by ±1 along x and ±width along y (unsigned wrap-around adds the same).
+  std::size_t cell = static_cast<std::size_t>(y) * width + static_cast<std::size_t>(x);
+  const std::size_t cell_step_x = static_cast<std::size_t>(step_x);
+  const std::size_t cell_step_y = static_cast<std::size_t>(step_y) * width;
   // At most one step per cell boundary between the two cells.
   const long steps = std::abs(end_x - x) + std::abs(end_y - y);
   for (long i = 0; i < steps; ++i) {
-    visit(x, y);
+    visit(cell);
     if (next_x < next_y) {
-      x += step_x;
+      cell += cell_step_x;
       next_x += delta_x;
     } else {
-      y += step_y;
+      cell += cell_step_y;
       next_y += delta_y;
     }
   }
@@ -143,9 +149,7 @@ OccupancyGrid OccupancyGridBuilder::Build() const {
     for (const Eigen::Vector2d& endpoint : endpoints) {
       const Eigen::Vector2d to = (endpoint - grid.origin_m) / r;
       hit[static_cast<std::size_t>(to.y()) * grid.width + static_cast<std::size_t>(to.x())] = mark;
-      TraverseCells(from, to, [&](long x, long y) {
-        const std::size_t cell =
-            static_cast<std::size_t>(y) * grid.width + static_cast<std::size_t>(x);
+      TraverseCells(from, to, grid.width, [&](std::size_t cell) {
         if (missed[cell] == mark) return;
         missed[cell] = mark;
         crossed.push_back(cell);
