@@ -73,8 +73,8 @@ struct BeamTerm {
 
 // A robust kernel on s = e²: ρ(s), ρ'(s), ρ''(s), by the very operations of Ceres' CauchyLoss,
 // HuberLoss and TukeyLoss with parameter a (equal to the bit: tested), without their virtual call
-// (a call per beam and evaluation: 8 % of a session's instructions). The default is no kernel,
-// ρ(s) = s.
+// per beam and evaluation (about 1 % of a session's instructions; the logarithm itself stays).
+// The default is no kernel, ρ(s) = s.
 class BeamKernel {
  public:
   BeamKernel() = default;
