@@ -173,6 +173,32 @@ TEST_P(BeamsResidualTest, MatchesOneBlockPerBeamWithCeresLoss) {
   }
 }
 
+// Levenberg–Marquardt's trial steps ask for the cost alone (no Jacobians): that shortcut must
+// give the full evaluation's cost, ½‖r‖², at postures near and far from the truth.
+TEST_P(BeamsResidualTest, CostOnlyEvaluationGivesTheFullEvaluationsCost) {
+  const Case& c = GetParam();
+  std::mt19937 rng(17);
+  const double truth[3] = {-3.0, 0.5, -1.2};
+  const std::vector<BeamTerm> beams = RandomBeams(rng, truth, truth);
+  const BeamsResidual residual(beams, c.cosine, MakeBeamKernel(c.kernel));
+  const double postures[][3] = {{-3.0, 0.5, -1.2}, {-2.9, 0.45, -1.15}, {-3.4, 0.9, -1.0}};
+  for (const auto& pose : postures) {
+    const double* parameters[] = {pose};
+    double full[BeamsResidual::kResiduals], cost_only[BeamsResidual::kResiduals];
+    double jacobian[3 * BeamsResidual::kResiduals];
+    double* jacobians[] = {jacobian};
+    ASSERT_TRUE(residual.Evaluate(parameters, full, jacobians));
+    ASSERT_TRUE(residual.Evaluate(parameters, cost_only, nullptr));
+    double full_cost = 0.0, shortcut_cost = 0.0;
+    for (int i = 0; i < BeamsResidual::kResiduals; ++i) {
+      full_cost += 0.5 * full[i] * full[i];
+      shortcut_cost += 0.5 * cost_only[i] * cost_only[i];
+    }
+    EXPECT_GT(full_cost, 0.0);
+    EXPECT_NEAR(shortcut_cost, full_cost, 1e-12 * full_cost) << c.name;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(KernelsAndWeightings, BeamsResidualTest,
                          ::testing::Values(Case{Kernel::kCauchy, true, "cauchy_cosine"},
                                            Case{Kernel::kCauchy, false, "cauchy_plain"},

@@ -16,6 +16,7 @@ bool BeamsResidual::Evaluate(double const* const* parameters, double* residuals,
                              double** jacobians) const {
   const double* pose = parameters[0];
   const double cos_heading = std::cos(pose[2]), sin_heading = std::sin(pose[2]);
+  if (jacobians == nullptr) return EvaluateCost(pose, cos_heading, sin_heading, residuals);
   // JᵀJ of the corrected beams by its upper triangle (xx, xy, xθ, yy, yθ, θθ), summed by hand:
   // Eigen's rank update of a 3 × 3 is a call per beam.
   double upper[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
@@ -72,6 +73,26 @@ bool BeamsResidual::Evaluate(double const* const* parameters, double* residuals,
   residuals[3] = std::sqrt(std::max(0.0, squared_sum - projected + excess));
   if (jacobians != nullptr && jacobians[0] != nullptr)
     for (int j = 0; j < 3; ++j) jacobians[0][9 + j] = 0.0;
+  return true;
+}
+
+bool BeamsResidual::EvaluateCost(const double* pose, double cos_heading, double sin_heading,
+                                 double* residuals) const {
+  double sum = 0.0;  // Σρ(e²), or Σe² without a kernel
+  for (const BeamTerm& beam : beams_) {
+    double e = 0.0;
+    if (!beam.Evaluate(pose, cos_heading, sin_heading, cosine_, e, nullptr)) return false;
+    const double squared = e * e;
+    if (kernel_.robust()) {
+      double rho[3];
+      kernel_.Evaluate(squared, rho);
+      sum += rho[0];
+    } else {
+      sum += squared;
+    }
+  }
+  residuals[0] = std::sqrt(std::max(0.0, sum));
+  residuals[1] = residuals[2] = residuals[3] = 0.0;
   return true;
 }
 

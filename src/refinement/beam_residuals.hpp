@@ -162,6 +162,8 @@ class BeamsResidual : public ceres::CostFunction {
  public:
   BeamsResidual(std::vector<BeamTerm> beams, bool cosine, BeamKernel kernel = {});
 
+  // Without Jacobians (Levenberg–Marquardt's trial steps, which read only the cost) the cost
+  // alone, ½Σρ = ½‖r‖² with r = (√Σρ, 0, 0, 0): no Jacobian rows, corrections or eigen-solve.
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override;
 
@@ -174,6 +176,9 @@ class BeamsResidual : public ceres::CostFunction {
   static constexpr double kMinRelativeInformation = 1e-14;
 
  private:
+  bool EvaluateCost(const double* pose, double cos_heading, double sin_heading,
+                    double* residuals) const;
+
   std::vector<BeamTerm> beams_;
   bool cosine_;
   BeamKernel kernel_;
