@@ -60,13 +60,47 @@ bool BruteForceLine(const PointMap& map, const Eigen::Vector2d& query,
   Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
   for (const auto& [d2, i] : within)
     spread += (map.point(i) - centroid) * (map.point(i) - centroid).transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(spread);
-  if (!(eigen.eigenvalues()(1) > 0.0) || std::sqrt(std::max(0.0, eigen.eigenvalues()(0)) /
-                                                   eigen.eigenvalues()(1)) > options.max_thickness)
+  const SpreadAxes axes = SymmetricEigen2(spread(0, 0), spread(0, 1), spread(1, 1));
+  if (!(axes.largest > 0.0) ||
+      std::sqrt(std::max(0.0, axes.smallest) / axes.largest) > options.max_thickness)
     return false;
-  line.normal = eigen.eigenvectors().col(0).normalized();
+  line.normal = axes.minor_axis;
   line.offset = line.normal.dot(centroid);
   return true;
+}
+
+// The closed form against Eigen's iterative solver, on spreads of a few points along random
+// lines, thin to round, at scales from a millimetre to a kilometre, and on diagonal matrices.
+TEST(SymmetricEigen2, AgreesWithEigensSolverFromThinToRoundSpreads) {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> angle(-M_PI, M_PI), unit(0.0, 1.0);
+  int checked = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const double theta = angle(rng), scale = std::pow(10.0, -3.0 + 6.0 * unit(rng));
+    const double thickness = std::pow(10.0, -8.0 * unit(rng)) * 0.9;  // λmin/λmax up to 0.81
+    const Eigen::Vector2d major(std::cos(theta), std::sin(theta)), minor(-major.y(), major.x());
+    Eigen::Matrix2d m =
+        scale * (major * major.transpose() + thickness * thickness * minor * minor.transpose());
+    if (i % 100 == 0) m = Eigen::Vector2d(scale, thickness * scale).asDiagonal();
+    const SpreadAxes axes = SymmetricEigen2(m(0, 0), m(0, 1), m(1, 1));
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(m);
+    const double largest = eigen.eigenvalues()(1);
+    ASSERT_NEAR(axes.largest, largest, 1e-13 * largest) << i;
+    ASSERT_NEAR(axes.smallest, eigen.eigenvalues()(0), 1e-13 * largest) << i;
+    ASSERT_NEAR(axes.minor_axis.norm(), 1.0, 1e-14) << i;
+    // Either sign; an axis good to rounding relative to the eigenvalues' gap.
+    const double gap = (largest - eigen.eigenvalues()(0)) / largest;
+    ASSERT_NEAR(std::abs(axes.minor_axis.dot(eigen.eigenvectors().col(0))), 1.0, 1e-13 / gap) << i;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 20000);
+  // A multiple of the identity (a single point, a circle): both equal, any unit axis.
+  const SpreadAxes round = SymmetricEigen2(2.0, 0.0, 2.0);
+  EXPECT_EQ(round.smallest, 2.0);
+  EXPECT_EQ(round.largest, 2.0);
+  EXPECT_DOUBLE_EQ(round.minor_axis.norm(), 1.0);
+  const SpreadAxes zero = SymmetricEigen2(0.0, 0.0, 0.0);
+  EXPECT_EQ(zero.largest, 0.0);
 }
 
 TEST(FitPointLine, IsTheLineThroughTheKNearestWithinTheRadiusFoundByBruteForce) {

@@ -1,6 +1,5 @@
 #include "point_line_fit.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -39,16 +38,30 @@ bool FitLine(const PointMap& points, const Neighbours& nearest, double max_thick
     const Eigen::Vector2d d = points.point(index) - centroid;
     spread += d * d.transpose();
   }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(spread);
-  const double largest = eigen.eigenvalues()(1);
-  if (!(largest > 0.0)) return false;
-  if (std::sqrt(std::max(0.0, eigen.eigenvalues()(0)) / largest) > max_thickness) return false;
-  line.normal = eigen.eigenvectors().col(0).normalized();
+  const SpreadAxes axes = SymmetricEigen2(spread(0, 0), spread(0, 1), spread(1, 1));
+  if (!(axes.largest > 0.0)) return false;
+  if (std::sqrt(std::max(0.0, axes.smallest) / axes.largest) > max_thickness) return false;
+  line.normal = axes.minor_axis;
   line.offset = line.normal.dot(centroid);
   return true;
 }
 
 }  // namespace
+
+SpreadAxes SymmetricEigen2(double a, double b, double c) {
+  SpreadAxes axes;
+  const double mean = 0.5 * (a + c), half_gap = std::hypot(0.5 * (a - c), b);
+  axes.largest = mean + half_gap;
+  axes.smallest = mean - half_gap;
+  // (M − λ·I)·v = 0 by either row; the longer of the two solutions is the better conditioned.
+  const Eigen::Vector2d by_first(b, axes.smallest - a), by_second(axes.smallest - c, b);
+  const Eigen::Vector2d& v =
+      by_first.squaredNorm() >= by_second.squaredNorm() ? by_first : by_second;
+  const double length = v.norm();
+  // A multiple of the identity (a circle of points, or one point): every direction is an axis.
+  axes.minor_axis = length > 0.0 ? Eigen::Vector2d(v / length) : Eigen::Vector2d(1.0, 0.0);
+  return axes;
+}
 
 bool FitPointLine(const PointMap& points, const Eigen::Vector2d& query,
                   const PointLineFitOptions& options, SurfaceLine& line) {

@@ -21,6 +21,14 @@ struct PointLineFitOptions {
   double max_thickness = 0.8;
 };
 
+// The eigen-decomposition of the symmetric 2 × 2 matrix [a b; b c] in closed form: its
+// eigenvalues and the unit eigenvector of the smaller (either sign).
+struct SpreadAxes {
+  double smallest = 0.0, largest = 0.0;
+  Eigen::Vector2d minor_axis = Eigen::Vector2d::UnitX();
+};
+SpreadAxes SymmetricEigen2(double a, double b, double c);
+
 // The line through the k nearest map points within the radius of `query`. False when fewer
 // than two are found, or their spread is too round.
 bool FitPointLine(const PointMap& points, const Eigen::Vector2d& query,
