@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <stdexcept>
 
 #include "test_support.hpp"
@@ -52,6 +53,23 @@ TEST(OccupancyGrid, BeamsWithoutEchoLeaveEveryCellUnknown) {
   const OccupancyGrid grid = builder.Build();
   ASSERT_GT(grid.width * grid.height, 0u);
   for (float l : grid.log_odds) EXPECT_EQ(l, 0.0f);
+  EXPECT_EQ(grid.Probability(0, 0), 0.5);
+  EXPECT_EQ(grid.State(0, 0), CellState::kUnknown);
+}
+
+// The probability 1 − 1/(1 + e^l) on both sides of l = 0, where an unobserved cell's is exactly ½.
+TEST(OccupancyGrid, ProbabilityIsTheLogisticOfTheLogOdds) {
+  OccupancyGridBuilder builder;
+  for (int i = 0; i < 10; ++i) builder.AddScan(OneBeam(1.0), Pose2D(0.025, 0.025, 0.0));
+  const OccupancyGrid grid = builder.Build();
+  for (std::size_t y = 0; y < grid.height; ++y)
+    for (std::size_t x = 0; x < grid.width; ++x) {
+      const double l = grid.LogOdds(x, y);
+      EXPECT_NEAR(grid.Probability(x, y), 1.0 / (1.0 + std::exp(-l)), 1e-14) << x << ", " << y;
+    }
+  std::size_t x = 0, y = 0;
+  ASSERT_TRUE(grid.CellOf({1.025, 0.025}, x, y));
+  EXPECT_NEAR(grid.Probability(x, y), 1.0 / (1.0 + std::exp(-3.5)), 1e-7);
 }
 
 TEST(OccupancyGrid, RoomScansGiveWallsOccupiedAndTheInsideFree) {

@@ -10,6 +10,8 @@ namespace scanloc {
 namespace {
 
 double ProbabilityOf(double log_odds) {
+  // A cell never observed, most of a grid: exactly what the formula gives, without exp.
+  if (log_odds == 0.0) return 0.5;
   return 1.0 - 1.0 / (1.0 + std::exp(log_odds));
 }
 
