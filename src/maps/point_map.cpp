@@ -253,13 +253,21 @@ std::size_t PointMap::InsertScan(const LaserScan& scan, const Pose2D& T_world_la
   std::vector<double> spacings;
   const std::size_t n = scan.size();
   const Eigen::Rotation2Dd R_world_laser(T_world_laser.yaw_rad);
+  // Each valid beam's end point in the laser frame, computed once (each is used thrice).
+  std::vector<Eigen::Vector2d> laser_points(n);
+  std::vector<std::uint8_t> valid(n, 0);
+  for (std::size_t k = 0; k < n; ++k)
+    if (scan.IsValid(k)) {
+      valid[k] = 1;
+      laser_points[k] = scan.Point(k);
+    }
   for (std::size_t k = 0; k < n; ++k) {
-    if (!scan.IsValid(k)) continue;
-    const Eigen::Vector2d p = scan.Point(k);
+    if (!valid[k]) continue;
+    const Eigen::Vector2d p = laser_points[k];
     double spacing = std::numeric_limits<double>::infinity();
     std::optional<Eigen::Vector2d> before, after;
-    if (k > 0 && scan.IsValid(k - 1)) before = scan.Point(k - 1);
-    if (k + 1 < n && scan.IsValid(k + 1)) after = scan.Point(k + 1);
+    if (k > 0 && valid[k - 1]) before = laser_points[k - 1];
+    if (k + 1 < n && valid[k + 1]) after = laser_points[k + 1];
     if (before) spacing = (*before - p).norm();
     if (after) spacing = std::min(spacing, (*after - p).norm());
     if (!std::isfinite(spacing)) spacing = scan.ranges_m[k] * scan.layout.angle_increment_rad;
