@@ -60,5 +60,26 @@ TEST(LaserMounting, RobotAndLaserPosesRoundTrip) {
   EXPECT_NEAR(back.y_m, 2.0, 1e-12);
 }
 
+// The table's r·(cos, sin) must be LaserScan::Point to the bit, and a layout change must rebuild
+// it.
+TEST(BearingCosines, GiveEachBeamsPointBitForBitAndFollowTheLayout) {
+  for (const ScanLayout& layout :
+       {MakeLayout(181, M_PI, 80.0), MakeLayout(1081, 1.5 * M_PI, 30.0),
+        MakeLayout(181, M_PI, 80.0), MakeLayout(360, 2.0 * M_PI, 10.0)}) {
+    LaserScan scan;
+    scan.layout = layout;
+    scan.ranges_m.assign(layout.beam_count, 0.0);
+    for (std::size_t k = 0; k < layout.beam_count; ++k) scan.ranges_m[k] = 0.5 + 0.37 * k;
+    const BearingCosines& table = BearingCosinesOf(layout);
+    ASSERT_EQ(table.cos.size(), layout.beam_count);
+    ASSERT_EQ(table.sin.size(), layout.beam_count);
+    for (std::size_t k = 0; k < layout.beam_count; ++k) {
+      const Eigen::Vector2d point = scan.Point(k);
+      EXPECT_EQ(scan.ranges_m[k] * table.cos[k], point.x()) << k;
+      EXPECT_EQ(scan.ranges_m[k] * table.sin[k], point.y()) << k;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace scanloc

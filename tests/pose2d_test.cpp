@@ -81,5 +81,19 @@ TEST(Pose2D, TransformMapsLaserPointToWorld) {
   EXPECT_NEAR(p.y(), 1.0, 1e-12);
 }
 
+// Taking the cosine and sine once must not change a single bit of the transformed points.
+TEST(PoseTransform, MapsPointsBitForBitAsPose2DTransform) {
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> coordinate(-500.0, 500.0), angle(-10.0, 10.0);
+  for (int i = 0; i < 2000; ++i) {
+    const Pose2D pose(coordinate(rng), coordinate(rng), angle(rng));
+    const PoseTransform transform(pose);
+    const Eigen::Vector2d point(coordinate(rng), coordinate(rng));
+    const Eigen::Vector2d a = pose.Transform(point), b = transform(point);
+    EXPECT_EQ(a.x(), b.x()) << i;
+    EXPECT_EQ(a.y(), b.y()) << i;
+  }
+}
+
 }  // namespace
 }  // namespace scanloc

@@ -21,6 +21,24 @@ std::size_t LaserScan::CountValid() const {
   return count;
 }
 
+const BearingCosines& BearingCosinesOf(const ScanLayout& layout) {
+  thread_local BearingCosines table;
+  if (table.cos.size() == layout.beam_count && table.beam_count == layout.beam_count &&
+      table.angle_min_rad == layout.angle_min_rad &&
+      table.angle_increment_rad == layout.angle_increment_rad)
+    return table;
+  table.beam_count = layout.beam_count;
+  table.angle_min_rad = layout.angle_min_rad;
+  table.angle_increment_rad = layout.angle_increment_rad;
+  table.cos.resize(layout.beam_count);
+  table.sin.resize(layout.beam_count);
+  for (std::size_t k = 0; k < layout.beam_count; ++k) {
+    table.cos[k] = std::cos(layout.Bearing(k));
+    table.sin[k] = std::sin(layout.Bearing(k));
+  }
+  return table;
+}
+
 Eigen::Vector2d LaserScan::Point(std::size_t beam) const {
   const double bearing = layout.Bearing(beam);
   return {ranges_m[beam] * std::cos(bearing), ranges_m[beam] * std::sin(bearing)};

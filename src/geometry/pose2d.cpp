@@ -23,8 +23,7 @@ Pose2D Pose2D::Inverse() const {
 }
 
 Eigen::Vector2d Pose2D::Transform(const Eigen::Vector2d& point) const {
-  const double c = std::cos(yaw_rad), s = std::sin(yaw_rad);
-  return {x_m + c * point.x() - s * point.y(), y_m + s * point.x() + c * point.y()};
+  return PoseTransform(*this)(point);
 }
 
 Pose2D Between(const Pose2D& from, const Pose2D& to) {

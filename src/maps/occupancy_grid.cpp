@@ -106,8 +106,13 @@ void OccupancyGridBuilder::AddScan(const LaserScan& scan, const Pose2D& T_world_
 
 void OccupancyGridBuilder::EndPoints(const KeptScan& kept, std::vector<Eigen::Vector2d>& points) {
   points.clear();
-  for (std::size_t i = 0; i < kept.scan.size(); ++i)
-    if (kept.scan.IsValid(i)) points.push_back(kept.T_world_laser.Transform(kept.scan.Point(i)));
+  const BearingCosines& bearings = BearingCosinesOf(kept.scan.layout);
+  const PoseTransform T_world_laser(kept.T_world_laser);
+  for (std::size_t i = 0; i < kept.scan.size(); ++i) {
+    if (!kept.scan.IsValid(i)) continue;
+    const double r = kept.scan.ranges_m[i];
+    points.push_back(T_world_laser({r * bearings.cos[i], r * bearings.sin[i]}));
+  }
 }
 
 OccupancyGrid OccupancyGridBuilder::Build() const {

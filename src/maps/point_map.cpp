@@ -256,11 +256,13 @@ std::size_t PointMap::InsertScan(const LaserScan& scan, const Pose2D& T_world_la
   // Each valid beam's end point in the laser frame, computed once (each is used thrice).
   std::vector<Eigen::Vector2d> laser_points(n);
   std::vector<std::uint8_t> valid(n, 0);
+  const BearingCosines& bearings = BearingCosinesOf(scan.layout);
   for (std::size_t k = 0; k < n; ++k)
     if (scan.IsValid(k)) {
       valid[k] = 1;
-      laser_points[k] = scan.Point(k);
+      laser_points[k] = scan.ranges_m[k] * Eigen::Vector2d(bearings.cos[k], bearings.sin[k]);
     }
+  const PoseTransform to_world(T_world_laser);
   for (std::size_t k = 0; k < n; ++k) {
     if (!valid[k]) continue;
     const Eigen::Vector2d p = laser_points[k];
@@ -281,7 +283,7 @@ std::size_t PointMap::InsertScan(const LaserScan& scan, const Pose2D& T_world_la
       if (normal.dot(p) > 0.0) normal = -normal;  // facing the laser
       normal = R_world_laser * normal;
     }
-    points.push_back(T_world_laser.Transform(p));  // (3.6)
+    points.push_back(to_world(p));  // (3.6)
     spacings.push_back(spacing);
     normals.push_back(normal);
   }
@@ -305,7 +307,7 @@ std::size_t PointMap::CarveFreeSpace(const LaserScan& scan, const Pose2D& T_worl
   for (std::size_t k = 1; k + 1 < n; ++k)
     if (scan.IsValid(k - 1) && scan.IsValid(k) && scan.IsValid(k + 1))
       nearest[k] = std::min({scan.ranges_m[k - 1], scan.ranges_m[k], scan.ranges_m[k + 1]});
-  const Pose2D T_laser_world = T_world_laser.Inverse();
+  const PoseTransform T_laser_world(T_world_laser.Inverse());
   const double angle_min = scan.layout.angle_min_rad;
   const double increment = scan.layout.angle_increment_rad;
   const CarvedBlocks carved{T_world_laser, scan.layout,  nearest,
@@ -318,7 +320,7 @@ std::size_t PointMap::CarveFreeSpace(const LaserScan& scan, const Pose2D& T_worl
       [&carved](std::int64_t ix, std::int64_t iy) { return carved.MayHoldCarved(ix, iy); },
       candidates);
   for (const auto& [index, unused] : candidates) {
-    const Eigen::Vector2d q = T_laser_world.Transform(s.points[index]);
+    const Eigen::Vector2d q = T_laser_world(s.points[index]);
     const double range = q.norm();
     if (range <= scan.layout.range_min_m) continue;
     const double beam = std::round(

@@ -51,32 +51,6 @@ ceres::Context* SharedContext() {
   return context.get();
 }
 
-// The cosine and sine of each bearing of the layout last asked for on this thread, bit for bit
-// std::cos and std::sin of Bearing(k): every problem of a session has the same layout.
-struct BearingCosines {
-  std::size_t beam_count = 0;
-  double angle_min_rad = 0.0, angle_increment_rad = 0.0;
-  std::vector<double> cos, sin;
-};
-
-const BearingCosines& BearingCosinesOf(const ScanLayout& layout) {
-  thread_local BearingCosines table;
-  if (table.cos.size() == layout.beam_count && table.beam_count == layout.beam_count &&
-      table.angle_min_rad == layout.angle_min_rad &&
-      table.angle_increment_rad == layout.angle_increment_rad)
-    return table;
-  table.beam_count = layout.beam_count;
-  table.angle_min_rad = layout.angle_min_rad;
-  table.angle_increment_rad = layout.angle_increment_rad;
-  table.cos.resize(layout.beam_count);
-  table.sin.resize(layout.beam_count);
-  for (std::size_t k = 0; k < layout.beam_count; ++k) {
-    table.cos[k] = std::cos(layout.Bearing(k));
-    table.sin[k] = std::sin(layout.Bearing(k));
-  }
-  return table;
-}
-
 struct BuiltProblem {
   // Owned here rather than by the problem; declared first, destroyed last.
   std::unique_ptr<BeamsResidual> residual;

@@ -259,8 +259,9 @@ WideSearchResult WideSearch(const MapView& map, const LaserScan& scan, const Sea
     Pose2D pose = window.centre;
     pose.yaw_rad = NormalizeAngle(pose.yaw_rad + k * step_rad);
     std::vector<Eigen::Vector2i> heading_cells;
+    const PoseTransform T_world_laser(pose);
     for (const Eigen::Vector2d& p : endpoints)
-      heading_cells.push_back(field.Cell(pose.Transform(p)));
+      heading_cells.push_back(field.Cell(T_world_laser(p)));
     cells.push_back(std::move(heading_cells));
     yaws.push_back(pose.yaw_rad);
   }

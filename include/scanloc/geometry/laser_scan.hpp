@@ -42,6 +42,17 @@ struct LaserScan {
   Eigen::Vector2d Point(std::size_t beam) const;
 };
 
+// The cosine and sine of each bearing of a layout, bit for bit std::cos and std::sin of
+// Bearing(k) (so r·(cos[k], sin[k]) is LaserScan::Point(k)).
+struct BearingCosines {
+  std::size_t beam_count = 0;
+  double angle_min_rad = 0.0, angle_increment_rad = 0.0;
+  std::vector<double> cos, sin;
+};
+// The table of the layout last asked for on this thread, computed when the layout changes (every
+// scan of a log has the same). The reference holds until the next call with another layout.
+const BearingCosines& BearingCosinesOf(const ScanLayout& layout);
+
 // True when the range is finite, above range_min_m and below range_max_m.
 bool IsValidRange(double range_m, const ScanLayout& layout);
 

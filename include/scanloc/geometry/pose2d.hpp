@@ -37,6 +37,17 @@ struct Pose2D {
   Pose2D Normalized() const { return {x_m, y_m, NormalizeAngle(yaw_rad)}; }
 };
 
+// A posture's cosine and sine taken once, to map many points into the parent frame: bit for bit
+// Pose2D::Transform, which evaluates them per point.
+struct PoseTransform {
+  explicit PoseTransform(const Pose2D& pose)
+      : x_m(pose.x_m), y_m(pose.y_m), c(std::cos(pose.yaw_rad)), s(std::sin(pose.yaw_rad)) {}
+  Eigen::Vector2d operator()(const Eigen::Vector2d& point) const {
+    return {x_m + c * point.x() - s * point.y(), y_m + s * point.x() + c * point.y()};
+  }
+  double x_m, y_m, c, s;
+};
+
 // Difference of two poses: a ⊖ b = b⁻¹ · a, the motion from b to a in b's frame.
 Pose2D Between(const Pose2D& from, const Pose2D& to);
 
