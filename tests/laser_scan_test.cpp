@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
+#include <vector>
 
 namespace scanloc {
 namespace {
@@ -79,6 +82,51 @@ TEST(BearingCosines, GiveEachBeamsPointBitForBitAndFollowTheLayout) {
       EXPECT_EQ(scan.ranges_m[k] * table.sin[k], point.y()) << k;
     }
   }
+}
+
+// The beams in [from, from + span] as ForEachBeamInInterval found them before it skipped the
+// shifts that cannot hold a beam: every shift's bounds computed.
+std::vector<std::size_t> BeamsInIntervalByEveryShift(const ScanLayout& layout, double from_rad,
+                                                     double span_rad) {
+  std::vector<std::size_t> beams;
+  const double inc = layout.angle_increment_rad;
+  const double start = NormalizeAngle(from_rad);
+  for (const double shift : {-2.0 * M_PI, 0.0, 2.0 * M_PI}) {
+    const double lo = start + shift - layout.angle_min_rad;
+    const double first = std::max(0.0, std::ceil(lo / inc - 1e-9));
+    const double last = std::min(static_cast<double>(layout.beam_count) - 1.0,
+                                 std::floor((lo + span_rad) / inc + 1e-9));
+    for (double k = first; k <= last; k += 1.0) beams.push_back(static_cast<std::size_t>(k));
+  }
+  return beams;
+}
+
+// Random intervals, and intervals that end or start a hair (1e-12 to 1e-5 steps) from the first
+// and last beams, on a half, a three-quarter and a full turn: the same beams, in the same order.
+TEST(ForEachBeamInInterval, VisitsWhatEveryShiftsBoundsGive) {
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> angle(-4.0, 4.0), unit(0.0, 1.0);
+  int visits = 0;
+  for (const ScanLayout& layout : {MakeLayout(181, M_PI, 80.0), MakeLayout(1081, 1.5 * M_PI, 30.0),
+                                   MakeLayout(360, 2.0 * M_PI, 10.0)}) {
+    const double inc = layout.angle_increment_rad;
+    const double last_bearing = layout.Bearing(layout.beam_count - 1);
+    for (int i = 0; i < 20000; ++i) {
+      const double span = (i % 3 == 0 ? unit(rng) * M_PI : unit(rng) * 4.0 * inc);
+      const double hair = std::pow(10.0, -12.0 + 7.0 * unit(rng)) * inc * (i % 2 ? 1.0 : -1.0);
+      double from = angle(rng);
+      if (i % 5 == 1) from = layout.angle_min_rad - span + hair;  // ends at beam 0
+      if (i % 5 == 2) from = last_bearing + hair;                 // starts at the last beam
+      std::vector<std::size_t> got;
+      ForEachBeamInInterval(layout, from, span, [&](std::size_t k) { got.push_back(k); });
+      const std::vector<std::size_t> expected = BeamsInIntervalByEveryShift(layout, from, span);
+      ASSERT_EQ(got, expected) << "interval " << i << " from " << from << " span " << span;
+      const bool any = AnyBeamInInterval(layout, from, span, [](std::size_t) { return true; });
+      ASSERT_EQ(any, !expected.empty()) << "interval " << i;
+      visits += static_cast<int>(got.size());
+    }
+  }
+  EXPECT_GT(visits, 100000);
 }
 
 }  // namespace

@@ -60,6 +60,15 @@ bool IsValidRange(double range_m, const ScanLayout& layout);
 // (fov = 2π) the last beam stops one step short of the first.
 ScanLayout MakeLayout(std::size_t beam_count, double fov_rad, double range_max_m);
 
+// False when the bearings [lo, hi] (relative to angle_min_rad) certainly hold no beam: hi is
+// more than a millionth of a step below beam 0, or lo as far above the last beam. The intervals'
+// own tolerance is a billionth of a step, so such a shift would visit nothing: skipping its
+// divisions changes no result.
+inline bool IntervalMayHoldBeams(const ScanLayout& layout, double lo, double hi) {
+  const double inc = layout.angle_increment_rad;
+  return hi >= -1e-6 * inc && lo <= (static_cast<double>(layout.beam_count) - 1.0 + 1e-6) * inc;
+}
+
 // Calls visit(beam) for each beam of `layout` whose bearing (laser frame) lies in
 // [from, from + span], span in [0, π]; bearings are compared modulo 2π so an interval across the
 // ±π seam is handled.
@@ -71,6 +80,7 @@ void ForEachBeamInInterval(const ScanLayout& layout, double from_rad, double spa
   for (const double shift : {-2.0 * M_PI, 0.0, 2.0 * M_PI}) {
     const double lo = start + shift - layout.angle_min_rad;
     const double hi = lo + span_rad;
+    if (!IntervalMayHoldBeams(layout, lo, hi)) continue;
     const double first = std::max(0.0, std::ceil(lo / inc - 1e-9));
     const double last =
         std::min(static_cast<double>(layout.beam_count) - 1.0, std::floor(hi / inc + 1e-9));
@@ -86,6 +96,7 @@ bool AnyBeamInInterval(const ScanLayout& layout, double from_rad, double span_ra
   const double start = NormalizeAngle(from_rad);
   for (const double shift : {-2.0 * M_PI, 0.0, 2.0 * M_PI}) {
     const double lo = start + shift - layout.angle_min_rad;
+    if (!IntervalMayHoldBeams(layout, lo, lo + span_rad)) continue;
     const double first = std::max(0.0, std::ceil(lo / inc - 1e-9));
     const double last = std::min(static_cast<double>(layout.beam_count) - 1.0,
                                  std::floor((lo + span_rad) / inc + 1e-9));
