@@ -199,6 +199,38 @@ TEST_P(BeamsResidualTest, CostOnlyEvaluationGivesTheFullEvaluationsCost) {
   }
 }
 
+// A full evaluation at the posture of the last cost-only one takes the kernel's values from it:
+// its residuals and Jacobian must be those of a block that never evaluated a cost, to the bit;
+// and a cost-only evaluation elsewhere must not leak into a full one here.
+TEST_P(BeamsResidualTest, FullEvaluationAfterTheCostIsBitForBitAFreshOne) {
+  const Case& c = GetParam();
+  std::mt19937 rng(19);
+  const double truth[3] = {2.0, 1.0, -0.3};
+  const std::vector<BeamTerm> beams = RandomBeams(rng, truth, truth);
+  const double here[3] = {2.04, 0.97, -0.29}, elsewhere[3] = {2.1, 1.2, -0.2};
+  const BeamsResidual fresh(beams, c.cosine, MakeBeamKernel(c.kernel));
+  const BeamsResidual after_cost(beams, c.cosine, MakeBeamKernel(c.kernel));
+  const BeamsResidual after_other(beams, c.cosine, MakeBeamKernel(c.kernel));
+  const auto full = [](const BeamsResidual& residual, const double pose[3]) {
+    const double* parameters[] = {pose};
+    std::vector<double> values(BeamsResidual::kResiduals + 3 * BeamsResidual::kResiduals);
+    double* jacobians[] = {values.data() + BeamsResidual::kResiduals};
+    EXPECT_TRUE(residual.Evaluate(parameters, values.data(), jacobians));
+    return values;
+  };
+  const auto cost_only = [](const BeamsResidual& residual, const double pose[3]) {
+    const double* parameters[] = {pose};
+    double values[BeamsResidual::kResiduals];
+    EXPECT_TRUE(residual.Evaluate(parameters, values, nullptr));
+  };
+  cost_only(after_cost, here);
+  cost_only(after_other, elsewhere);
+  const std::vector<double> expected = full(fresh, here);
+  EXPECT_EQ(full(after_cost, here), expected) << c.name;
+  EXPECT_EQ(full(after_other, here), expected) << c.name;
+  EXPECT_EQ(full(after_cost, here), expected) << c.name << " (twice)";
+}
+
 INSTANTIATE_TEST_SUITE_P(KernelsAndWeightings, BeamsResidualTest,
                          ::testing::Values(Case{Kernel::kCauchy, true, "cauchy_cosine"},
                                            Case{Kernel::kCauchy, false, "cauchy_plain"},
@@ -264,6 +296,10 @@ TEST(BeamKernel, EvaluatesToTheBitAsCeresLossFunctions) {
       for (int k = 0; k < 3; ++k)
         ASSERT_EQ(got[k], expected[k])
             << "kernel " << static_cast<int>(kernel) << " s " << s << " derivative " << k;
+      double derivatives[3];
+      inline_kernel.Derivatives(s, derivatives);
+      ASSERT_EQ(derivatives[1], expected[1]) << "kernel " << static_cast<int>(kernel) << " s " << s;
+      ASSERT_EQ(derivatives[2], expected[2]) << "kernel " << static_cast<int>(kernel) << " s " << s;
     }
   }
   double none[3];

@@ -23,14 +23,20 @@ bool BeamsResidual::Evaluate(double const* const* parameters, double* residuals,
   Eigen::Vector3d gradient = Eigen::Vector3d::Zero();  // Jᵀẽ
   double squared_sum = 0.0;                            // Σẽ²
   double excess = 0.0;                                 // Σ(ρ − ẽ²)
-  for (const BeamTerm& beam : beams_) {
+  const bool cached = kernel_.robust() && CachedAt(pose);
+  for (std::size_t k = 0; k < beams_.size(); ++k) {
     double e = 0.0;
     Eigen::Vector3d row;
-    if (!beam.Evaluate(pose, cos_heading, sin_heading, cosine_, e, row.data())) return false;
+    if (!beams_[k].Evaluate(pose, cos_heading, sin_heading, cosine_, e, row.data())) return false;
     if (kernel_.robust()) {
       const double squared = e * e;
       double rho[3];
-      kernel_.Evaluate(squared, rho);
+      if (cached) {
+        kernel_.Derivatives(squared, rho);
+        rho[0] = cached_rho_[k];
+      } else {
+        kernel_.Evaluate(squared, rho);
+      }
       const double sqrt_rho1 = std::sqrt(rho[1]);
       double residual_scaling = sqrt_rho1, jacobian_scaling = sqrt_rho1;
       if (squared != 0.0 && rho[2] > 0.0) {
@@ -79,21 +85,33 @@ bool BeamsResidual::Evaluate(double const* const* parameters, double* residuals,
 bool BeamsResidual::EvaluateCost(const double* pose, double cos_heading, double sin_heading,
                                  double* residuals) const {
   double sum = 0.0;  // Σρ(e²), or Σe² without a kernel
-  for (const BeamTerm& beam : beams_) {
+  cached_ = false;
+  if (kernel_.robust()) cached_rho_.resize(beams_.size());
+  for (std::size_t k = 0; k < beams_.size(); ++k) {
     double e = 0.0;
-    if (!beam.Evaluate(pose, cos_heading, sin_heading, cosine_, e, nullptr)) return false;
+    if (!beams_[k].Evaluate(pose, cos_heading, sin_heading, cosine_, e, nullptr)) return false;
     const double squared = e * e;
     if (kernel_.robust()) {
       double rho[3];
       kernel_.Evaluate(squared, rho);
+      cached_rho_[k] = rho[0];
       sum += rho[0];
     } else {
       sum += squared;
     }
   }
+  if (kernel_.robust()) {
+    std::copy(pose, pose + 3, cached_at_);
+    cached_ = true;
+  }
   residuals[0] = std::sqrt(std::max(0.0, sum));
   residuals[1] = residuals[2] = residuals[3] = 0.0;
   return true;
+}
+
+bool BeamsResidual::CachedAt(const double* pose) const {
+  return cached_ && pose[0] == cached_at_[0] && pose[1] == cached_at_[1] &&
+         pose[2] == cached_at_[2];
 }
 
 PriorResidual::PriorResidual(const Pose2D& mean, const Eigen::Vector3d& weights)

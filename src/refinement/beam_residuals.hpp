@@ -81,6 +81,15 @@ class BeamKernel {
   BeamKernel(RobustKernel kernel, double a) : kind_(Of(kernel)), a_(a), b_(a * a), c_(1 / b_) {}
 
   bool robust() const { return kind_ != Kind::kNone; }
+  // ρ'(s) and ρ''(s), bit for bit Evaluate's (Cauchy's without its logarithm); rho[0] is left
+  // to the caller.
+  void Derivatives(double s, double rho[3]) const {
+    if (kind_ != Kind::kCauchy) return Evaluate(s, rho);
+    const double sum = 1.0 + s * c_;
+    const double inv = 1.0 / sum;
+    rho[1] = std::max(std::numeric_limits<double>::min(), inv);
+    rho[2] = -c_ * (inv * inv);
+  }
   void Evaluate(double s, double rho[3]) const {
     switch (kind_) {
       case Kind::kNone:
@@ -178,6 +187,15 @@ class BeamsResidual : public ceres::CostFunction {
  private:
   bool EvaluateCost(const double* pose, double cos_heading, double sin_heading,
                     double* residuals) const;
+  bool CachedAt(const double* pose) const;
+
+  // Each beam's ρ from the last cost-only evaluation and the posture it was at. Levenberg–
+  // Marquardt evaluates an accepted step's Jacobians at the very posture whose cost it just
+  // evaluated: the kernel's values (its logarithm) are then taken from here, bit for bit. One
+  // problem is solved by one thread (the refiner's solves run with one), so this is not shared.
+  mutable std::vector<double> cached_rho_;
+  mutable double cached_at_[3] = {0.0, 0.0, 0.0};
+  mutable bool cached_ = false;
 
   std::vector<BeamTerm> beams_;
   bool cosine_;
