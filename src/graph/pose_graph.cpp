@@ -8,58 +8,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "pose_graph_terms.hpp"
+
 namespace scanloc {
 namespace {
-
-// An angle wrapped to [-π, π) in a form Ceres' jets can differentiate.
-template <typename T>
-T WrapAngle(const T& angle_rad) {
-  const T two_pi(2.0 * M_PI);
-  return angle_rad - two_pi * ceres::floor((angle_rad + T(M_PI)) / two_pi);
-}
-
-// A node's posture (x, y, yaw) as one parameter block: a step is added and the yaw wrapped, so the
-// solver never sees the jump at ±π. One block per node keeps the normal equations' blocks 3 × 3.
-struct PosturePlus {
-  template <typename T>
-  bool Plus(const T* posture, const T* delta, T* result) const {
-    result[0] = posture[0] + delta[0];
-    result[1] = posture[1] + delta[1];
-    result[2] = WrapAngle(posture[2] + delta[2]);
-    return true;
-  }
-  template <typename T>
-  bool Minus(const T* to, const T* from, T* result) const {
-    result[0] = to[0] - from[0];
-    result[1] = to[1] - from[1];
-    result[2] = WrapAngle(to[2] - from[2]);
-    return true;
-  }
-};
-
-// The whitened difference between an edge's measured relative posture and the one its two nodes
-// give now, in the `from` node's frame.
-class RelativePostureError {
- public:
-  RelativePostureError(const Pose2D& measured, const Eigen::Matrix3d& sqrt_information)
-      : measured_(measured), sqrt_information_(sqrt_information) {}
-
-  template <typename T>
-  bool operator()(const T* from, const T* to, T* residual) const {
-    const T c = ceres::cos(from[2]), s = ceres::sin(from[2]);
-    const T dx = to[0] - from[0], dy = to[1] - from[1];
-    Eigen::Matrix<T, 3, 1> error;
-    error << c * dx + s * dy - T(measured_.x_m), -s * dx + c * dy - T(measured_.y_m),
-        WrapAngle(to[2] - from[2] - T(measured_.yaw_rad));
-    Eigen::Map<Eigen::Matrix<T, 3, 1>> whitened(residual);
-    whitened = sqrt_information_.template cast<T>() * error;
-    return true;
-  }
-
- private:
-  Pose2D measured_;
-  Eigen::Matrix3d sqrt_information_;
-};
 
 // The upper factor U of Ω = UᵀU, or an empty optional-like zero matrix when Ω is not symmetric
 // positive definite.
@@ -159,7 +111,7 @@ void PoseGraph::Solve(const PoseGraphOptions& options, PoseGraphSummary& summary
     postures[3 * i + 2] = nodes_[i].yaw_rad;
   }
   // One manifold and one loss shared by every block: the problem must not delete them.
-  ceres::AutoDiffManifold<PosturePlus, 3, 3> manifold;
+  PostureManifold manifold;
   ceres::HuberLoss closure_loss(options.closure_loss_scale > 0.0 ? options.closure_loss_scale
                                                                  : 1.0);
   ceres::Problem::Options problem_options;
@@ -170,8 +122,7 @@ void PoseGraph::Solve(const PoseGraphOptions& options, PoseGraphSummary& summary
     if (!edge.active) continue;
     Eigen::Matrix3d root;
     SquareRootInformation(edge.information, root);
-    auto* cost = new ceres::AutoDiffCostFunction<RelativePostureError, 3, 3, 3>(
-        new RelativePostureError(edge.T_from_to, root));
+    auto* cost = new RelativePostureCost(edge.T_from_to, root);
     const bool robust = edge.kind == EdgeKind::kClosure && options.closure_loss_scale > 0.0;
     problem.AddResidualBlock(cost, robust ? &closure_loss : nullptr, &postures[3 * edge.from],
                              &postures[3 * edge.to]);
