@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include "test_support.hpp"
 
@@ -33,6 +34,27 @@ TEST(OccupancyGrid, BeamMarksCrossedCellsMissedOnceAndItsEndCellHit) {
   EXPECT_FLOAT_EQ(grid.LogOdds(20, 0), 0.85f);
   EXPECT_EQ(grid.State(20, 0), CellState::kOccupied);  // p = 0.70 > 0.65
   EXPECT_EQ(grid.State(3, 0), CellState::kUnknown);    // p = 0.45: one miss is not enough
+}
+
+TEST(OccupancyGrid, ACellOneBeamEndsInIsHitOnlyThoughAnotherBeamOfTheScanCrossesIt) {
+  // Two beams a microradian apart along +x: one ends in cell 10, the other crosses it to cell 20.
+  // Either beam order: cell 10 takes the hit alone, every other cell one vote.
+  for (const bool short_first : {true, false}) {
+    OccupancyGridOptions options;
+    options.margin_cells = 0;
+    OccupancyGridBuilder builder(options);
+    LaserScan scan;
+    scan.layout.beam_count = 2;
+    scan.layout.angle_min_rad = 0.0;
+    scan.layout.angle_increment_rad = 1e-6;
+    scan.ranges_m = short_first ? std::vector<double>{0.5, 1.0} : std::vector<double>{1.0, 0.5};
+    builder.AddScan(scan, Pose2D(0.025, 0.025, 0.0));
+    const OccupancyGrid grid = builder.Build();
+    ASSERT_EQ(grid.width, 21u) << short_first;
+    for (std::size_t x = 0; x < 21; ++x)
+      EXPECT_FLOAT_EQ(grid.LogOdds(x, 0), x == 10 || x == 20 ? 0.85f : -0.2f)
+          << "cell " << x << (short_first ? ", short beam first" : ", long beam first");
+  }
 }
 
 TEST(OccupancyGrid, RepeatedMissesMakeFreeCellsAndTheClampBoundsLogOdds) {

@@ -141,40 +141,36 @@ OccupancyGrid OccupancyGridBuilder::Build() const {
       static_cast<std::size_t>(std::floor((high.y() - grid.origin_m.y()) / r) + 1 + margin);
   grid.log_odds.assign(grid.width * grid.height, 0.0f);
 
-  // Each scan votes once per cell: a cell its beams cross and one where they end.
+  // Each scan votes once per cell: a cell where one of its beams ends, or else one they cross.
+  // The end cells are marked first, so that a crossed cell is voted free as it is first crossed.
   std::vector<std::uint32_t> missed(grid.log_odds.size(), 0), hit(grid.log_odds.size(), 0);
   auto update = [&](std::size_t cell, double change) {
     grid.log_odds[cell] = static_cast<float>(
         std::clamp(grid.log_odds[cell] + change, options_.log_odds_min, options_.log_odds_max));
   };
-  std::vector<std::size_t> crossed;  // the cells one scan's beams cross, each once
+  std::vector<std::size_t> ends;  // one scan's end cells, in beam order
   for (std::size_t s = 0; s < scans_.size(); ++s) {
     const std::uint32_t mark = static_cast<std::uint32_t>(s + 1);
     const Eigen::Vector2d from = (scans_[s].T_world_laser.Translation() - grid.origin_m) / r;
     EndPoints(scans_[s], endpoints);
-    crossed.clear();
+    ends.clear();
     for (const Eigen::Vector2d& endpoint : endpoints) {
       const Eigen::Vector2d to = (endpoint - grid.origin_m) / r;
-      hit[static_cast<std::size_t>(to.y()) * grid.width + static_cast<std::size_t>(to.x())] = mark;
-      TraverseCells(from, to, grid.width, [&](std::size_t cell) {
+      ends.push_back(static_cast<std::size_t>(to.y()) * grid.width +
+                     static_cast<std::size_t>(to.x()));
+      hit[ends.back()] = mark;
+    }
+    for (const Eigen::Vector2d& endpoint : endpoints)
+      TraverseCells(from, (endpoint - grid.origin_m) / r, grid.width, [&](std::size_t cell) {
         if (missed[cell] == mark) return;
         missed[cell] = mark;
-        crossed.push_back(cell);
+        if (hit[cell] != mark) update(cell, options_.log_odds_miss);
       });
-    }
-    for (const Eigen::Vector2d& endpoint : endpoints) {
-      const Eigen::Vector2d to = (endpoint - grid.origin_m) / r;
-      const std::size_t cell =
-          static_cast<std::size_t>(to.y()) * grid.width + static_cast<std::size_t>(to.x());
+    for (const std::size_t cell : ends)
       if (hit[cell] == mark) {
         update(cell, options_.log_odds_hit);
         hit[cell] = 0;  // counted once
-        missed[cell] = 0;
       }
-    }
-    // The crossed cells, minus those where a beam of this scan ended.
-    for (const std::size_t cell : crossed)
-      if (missed[cell] == mark) update(cell, options_.log_odds_miss);
   }
   return grid;
 }
