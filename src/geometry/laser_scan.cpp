@@ -6,15 +6,6 @@
 
 namespace scanloc {
 
-bool IsValidRange(double range_m, const ScanLayout& layout) {
-  return std::isfinite(range_m) && range_m > 0.0 && range_m > layout.range_min_m &&
-         range_m < layout.range_max_m;
-}
-
-bool LaserScan::IsValid(std::size_t beam) const {
-  return IsValidRange(ranges_m[beam], layout);
-}
-
 std::size_t LaserScan::CountValid() const {
   std::size_t count = 0;
   for (std::size_t i = 0; i < ranges_m.size(); ++i) count += IsValid(i) ? 1 : 0;

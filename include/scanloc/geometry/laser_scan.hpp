@@ -53,8 +53,15 @@ struct BearingCosines {
 // scan of a log has the same). The reference holds until the next call with another layout.
 const BearingCosines& BearingCosinesOf(const ScanLayout& layout);
 
-// True when the range is finite, above range_min_m and below range_max_m.
-bool IsValidRange(double range_m, const ScanLayout& layout);
+// True when the range is finite, above range_min_m and below range_max_m. Inline: it is asked
+// once per beam almost everywhere.
+inline bool IsValidRange(double range_m, const ScanLayout& layout) {
+  return std::isfinite(range_m) && range_m > 0.0 && range_m > layout.range_min_m &&
+         range_m < layout.range_max_m;
+}
+inline bool LaserScan::IsValid(std::size_t beam) const {
+  return IsValidRange(ranges_m[beam], layout);
+}
 
 // A layout of `beam_count` beams over `fov_rad`, centred on the heading. For a full revolution
 // (fov = 2π) the last beam stops one step short of the first.
