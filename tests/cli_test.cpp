@@ -427,9 +427,10 @@ TEST_F(CliTest, SessionOnANativeSequenceWritesCompleteOutputsThatEvaluate) {
   const double cpu_s = summary["cpu_time_s"].get<double>();
   EXPECT_GE(cpu_s, 0.0);
   EXPECT_LT(cpu_s, 64.0 * summary["wall_time_s"].get<double>() + 0.05);
-  if (cpu_s > 0.0)  // a few milliseconds here: the kernel's accounting may round them away
+  if (cpu_s > 0.0) {  // a few milliseconds here: the kernel's accounting may round them away
     EXPECT_NEAR(summary["times_real_time_on_cpu"].get<double>() * cpu_s,
                 summary["data_span_s"].get<double>(), 1e-6 * summary["data_span_s"].get<double>());
+  }
   EXPECT_GT(LoadPointMapPcd(run + "/map.pcd").size(), 100u);
   EXPECT_EQ(ReadTumTrajectory(run + "/trajectory.tum").size(), 30u);
 
