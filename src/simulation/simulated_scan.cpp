@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scanloc/geometry/approximate_bearing.hpp"
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/maps/point_map.hpp"
 
@@ -76,16 +77,30 @@ std::vector<Eigen::Vector2d> BeamDirections(const ScanLayout& layout, const Pose
   return directions;
 }
 
+// True when map point i, at `range_m` and about `bearing_rad` (laser frame, within
+// kApproximateAtan2Bound), cannot change the scan: every beam its footprint may cover already
+// holds a hit nearer than any range the point could offer there (a surfel offers no less than its
+// range minus its patch). Most points a simulated scan visits are such (hidden behind nearer
+// ones), and this needs no exact bearing.
+bool HiddenPoint(const SimulatedScan& sim, double bearing_rad, double half_width_rad,
+                 double nearest_offer_m) {
+  const double half = half_width_rad + 10.0 * kApproximateAtan2Bound;
+  if (half >= 0.5 * M_PI) return false;
+  return !AnyBeamInInterval(sim.layout, bearing_rad - half, 2.0 * half, [&](std::size_t k) {
+    return !sim.IsValid(k) || !(sim.ranges_m[k] < nearest_offer_m);
+  });
+}
+
 // (3.7) Offers map point i to the beams it covers as seen from T_world_laser; `directions` are
-// BeamDirections(sim.layout, T_world_laser).
+// BeamDirections(sim.layout, T_world_laser). With `cull`, a point that cannot change the scan
+// (HiddenPoint) is passed over first: the scan is the same.
 void OfferPoint(SimulatedScan& sim, const PointMap& map, const Pose2D& T_world_laser,
                 const std::vector<Eigen::Vector2d>& directions,
-                const PointSimulationOptions& options, std::uint32_t i) {
+                const PointSimulationOptions& options, std::uint32_t i, bool cull = true) {
   const ScanLayout& layout = sim.layout;
   const Eigen::Vector2d delta = map.point(i) - T_world_laser.Translation();
   const double range = delta.norm();  // (3.7) r_m
   if (!(range < layout.range_max_m) || range <= layout.range_min_m) return;
-  const double bearing = std::atan2(delta.y(), delta.x()) - T_world_laser.yaw_rad;  // (3.7) b_m
   // Half a step reaches the nearest beam, which is the chapter's binning; a wider footprint lets
   // the point hide the beams its neighbourhood covers.
   const double inc = layout.angle_increment_rad;
@@ -98,6 +113,12 @@ void OfferPoint(SimulatedScan& sim, const PointMap& map, const Pose2D& T_world_l
   const Eigen::Vector2d normal = map.normal(i);
   const bool surfel = normal.squaredNorm() > 0.0;
   const double patch_half_m = std::max(0.5 * options.footprint_factor * map.spacing(i), 1e-3);
+  // A surfel's crossing t satisfies |t·u − delta| ≤ patch_half_m, so t ≥ range − patch_half_m
+  // (less a micrometre for rounding).
+  if (cull && HiddenPoint(sim, ApproximateAtan2(delta.y(), delta.x()) - T_world_laser.yaw_rad,
+                          half_width, surfel ? range - patch_half_m - 1e-6 : range))
+    return;
+  const double bearing = std::atan2(delta.y(), delta.x()) - T_world_laser.yaw_rad;  // (3.7) b_m
   ForEachBeamInInterval(layout, bearing - half_width, 2.0 * half_width, [&](std::size_t beam) {
     double beam_range = range;
     if (surfel) {
@@ -299,7 +320,8 @@ SimulatedScan SimulateFromPointsBruteForce(const PointMap& map, const ScanLayout
   const std::vector<Eigen::Vector2d> directions = BeamDirections(layout, T_world_laser);
   for (std::size_t i = 0; i < map.size(); ++i)
     if (map.alive(i))
-      OfferPoint(sim, map, T_world_laser, directions, options, static_cast<std::uint32_t>(i));
+      OfferPoint(sim, map, T_world_laser, directions, options, static_cast<std::uint32_t>(i),
+                 false);
   return sim;
 }
 
