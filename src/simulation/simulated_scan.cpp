@@ -77,11 +77,11 @@ std::vector<Eigen::Vector2d> BeamDirections(const ScanLayout& layout, const Pose
   return directions;
 }
 
-// True when map point i, at `range_m` and about `bearing_rad` (laser frame, within
-// kApproximateAtan2Bound), cannot change the scan: every beam its footprint may cover already
-// holds a hit nearer than any range the point could offer there (a surfel offers no less than its
-// range minus its patch). Most points a simulated scan visits are such (hidden behind nearer
-// ones), and this needs no exact bearing.
+// True when a map point about `bearing_rad` (laser frame, within kApproximateAtan2Bound), whose
+// footprint reaches half_width_rad either side and which offers no range below nearest_offer_m,
+// cannot change the scan: every beam it may cover already holds a hit nearer than that. Most
+// points a simulated scan visits are such (hidden behind nearer ones), and this needs no exact
+// bearing.
 bool HiddenPoint(const SimulatedScan& sim, double bearing_rad, double half_width_rad,
                  double nearest_offer_m) {
   const double half = half_width_rad + 10.0 * kApproximateAtan2Bound;
