@@ -88,7 +88,10 @@ bool BeamLineFits::Fit(const PointMap& points, const Eigen::Vector2d& query,
     thread_local Neighbours found;
     points.RadiusSearch(query, options.radius_m + kPoolMarginM + 1e-6, found);
     pool_.clear();
-    for (const auto& [index, unused] : found) pool_.push_back({index, points.point(index)});
+    for (const auto& [index, squared_distance] : found)
+      pool_.push_back({index, points.point(index), std::sqrt(squared_distance)});
+    std::sort(pool_.begin(), pool_.end(),
+              [](const PoolPoint& a, const PoolPoint& b) { return a.distance < b.distance; });
     pool_centre_ = query;
     has_pool_ = true;
   }
@@ -97,9 +100,18 @@ bool BeamLineFits::Fit(const PointMap& points, const Eigen::Vector2d& query,
   nearest.clear();
   const auto k = static_cast<std::size_t>(options.neighbours);
   const double radius2 = options.radius_m * options.radius_m;
+  // Pooled points come nearest the pool's centre first. A point is at least its distance from
+  // the centre less the query's, so once that passes the k-th nearest found (or the radius), no
+  // later one can enter: the same k as a pass over the whole pool. The micrometre of slack keeps
+  // rounding from cutting a tie.
+  const double shift = (query - pool_centre_).norm() + 1e-6;
+  double reach = options.radius_m;
   for (const PoolPoint& pooled : pool_) {
+    if (pooled.distance - shift > reach) break;
     const double d2 = (pooled.point - query).squaredNorm();  // as PointMap::RadiusSearch
-    if (d2 < radius2) OfferNearest(nearest, k, pooled.index, d2);
+    if (!(d2 < radius2)) continue;
+    OfferNearest(nearest, k, pooled.index, d2);
+    if (nearest.size() == k) reach = std::sqrt(nearest.back().second);
   }
   if (nearest.size() < 2) return false;
   const bool same = has_fit_ && fitted_.size() == nearest.size() &&

@@ -57,8 +57,9 @@ class BeamLineFits {
   struct PoolPoint {
     std::uint32_t index;
     Eigen::Vector2d point;
+    double distance;  // from pool_centre_
   };
-  std::vector<PoolPoint> pool_;  // with their coordinates: the filter reads them in a row
+  std::vector<PoolPoint> pool_;  // nearest the centre first, with coordinates read in a row
   std::vector<std::pair<std::uint32_t, double>> nearest_;  // the current query's k nearest
   bool has_fit_ = false;
   std::vector<std::uint32_t> fitted_;  // the k nearest of the last fit, nearest first
