@@ -54,6 +54,12 @@ std::int64_t CellKey(const Eigen::Vector2d& p, double cell_size_m) {
   return CellKey(CellIndex(p.x(), cell_size_m), CellIndex(p.y(), cell_size_m));
 }
 
+// Removes `index` from a list of point indices, keeping the others' order.
+void EraseIndex(std::vector<std::uint32_t>& indices, std::uint32_t index) {
+  const auto found = std::find(indices.begin(), indices.end(), index);
+  if (found != indices.end()) indices.erase(found);
+}
+
 // Side of the search grid's cells. Short searches (the refinement's line fits: 0.3 m, several
 // thousand per scan) visit the few cells they overlap instead of the dynamic k-d tree's
 // sub-trees; longer ones use the tree.
@@ -109,8 +115,8 @@ struct PointMap::Storage {
   // live points directly instead of walking the tree to every leaf.
   Eigen::AlignedBox2d bounds;
   std::unordered_map<std::int64_t, std::uint32_t> occupied_cells;
-  // Every point ever added, by the kSearchCellM cell of its first sample (dead ones included:
-  // searches skip them).
+  // The live points by the kSearchCellM cell of their first sample, in the order they were added
+  // (carving takes a point out of its cell and its block).
   std::unordered_map<std::int64_t, std::vector<std::uint32_t>> search_cells;
   // The same by kBlockSideM block, for region culling.
   struct Block {
@@ -334,6 +340,12 @@ std::size_t PointMap::CarveFreeSpace(const LaserScan& scan, const Pose2D& T_worl
     if (s.misses[index] <= s.samples[index]) continue;
     s.alive[index] = 0;
     s.tree.removePoint(index);
+    // Out of the lists that searches and simulated scans walk, which skipped it anyway.
+    const Eigen::Vector2d& first_sample = s.indexed[index];
+    EraseIndex(s.search_cells.at(CellKey(first_sample, kSearchCellM)), index);
+    EraseIndex(
+        s.blocks.at(CellKey(BlockIndex(first_sample.x()), BlockIndex(first_sample.y()))).slots,
+        index);
     if (options_.cell_size_m > 0.0) {
       const auto cell = s.occupied_cells.find(CellKey(s.indexed[index], options_.cell_size_m));
       if (cell != s.occupied_cells.end() && cell->second == index) s.occupied_cells.erase(cell);
