@@ -87,11 +87,12 @@ bool BeamLineFits::Fit(const PointMap& points, const Eigen::Vector2d& query,
   if (!has_pool_ || (query - pool_centre_).norm() > kPoolMarginM) {
     thread_local Neighbours found;
     points.RadiusSearch(query, options.radius_m + kPoolMarginM + 1e-6, found);
+    // Sorted before the points' coordinates join them: half the bytes to move.
+    std::sort(found.begin(), found.end(),
+              [](const auto& a, const auto& b) { return a.second < b.second; });
     pool_.clear();
     for (const auto& [index, squared_distance] : found)
-      pool_.push_back({index, points.point(index), std::sqrt(squared_distance)});
-    std::sort(pool_.begin(), pool_.end(),
-              [](const PoolPoint& a, const PoolPoint& b) { return a.distance < b.distance; });
+      pool_.push_back({index, points.point(index), squared_distance});
     pool_centre_ = query;
     has_pool_ = true;
   }
@@ -102,16 +103,20 @@ bool BeamLineFits::Fit(const PointMap& points, const Eigen::Vector2d& query,
   const double radius2 = options.radius_m * options.radius_m;
   // Pooled points come nearest the pool's centre first. A point is at least its distance from
   // the centre less the query's, so once that passes the k-th nearest found (or the radius), no
-  // later one can enter: the same k as a pass over the whole pool. The micrometre of slack keeps
-  // rounding from cutting a tie.
+  // later one can enter: the same k as a pass over the whole pool. Compared squared, as
+  // (reach + shift)² against the squared distance from the centre; the micrometre of slack
+  // keeps rounding from cutting a tie.
   const double shift = (query - pool_centre_).norm() + 1e-6;
-  double reach = options.radius_m;
+  double limit2 = (options.radius_m + shift) * (options.radius_m + shift);
   for (const PoolPoint& pooled : pool_) {
-    if (pooled.distance - shift > reach) break;
+    if (pooled.squared_distance > limit2) break;
     const double d2 = (pooled.point - query).squaredNorm();  // as PointMap::RadiusSearch
     if (!(d2 < radius2)) continue;
     OfferNearest(nearest, k, pooled.index, d2);
-    if (nearest.size() == k) reach = std::sqrt(nearest.back().second);
+    if (nearest.size() == k) {
+      const double reach = std::sqrt(nearest.back().second) + shift;
+      limit2 = reach * reach;
+    }
   }
   if (nearest.size() < 2) return false;
   const bool same = has_fit_ && fitted_.size() == nearest.size() &&

@@ -57,7 +57,7 @@ class BeamLineFits {
   struct PoolPoint {
     std::uint32_t index;
     Eigen::Vector2d point;
-    double distance;  // from pool_centre_
+    double squared_distance;  // from pool_centre_
   };
   std::vector<PoolPoint> pool_;  // nearest the centre first, with coordinates read in a row
   std::vector<std::pair<std::uint32_t, double>> nearest_;  // the current query's k nearest
