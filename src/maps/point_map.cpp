@@ -400,7 +400,10 @@ void PointMap::RadiusSearch(const Eigen::Vector2d& centre, double radius_m,
       for (std::int64_t iy = cell_y0; iy <= cell_y1; ++iy) {
         const auto cell = s.search_cells.find(CellKey(ix, iy));
         if (cell == s.search_cells.end()) continue;
-        for (const std::uint32_t i : cell->second) offer(i);
+        for (const std::uint32_t i : cell->second) {  // live points only
+          const double d2 = (s.points[i] - centre).squaredNorm();
+          if (d2 < radius2) found.emplace_back(i, d2);
+        }
       }
     return;
   }
