@@ -5,9 +5,9 @@
 #
 # The symptom (wall time under `nice -n 19` beside busy loops) is the scheduler's to decide: the
 # same one-thread `scanloc refine` took 17 s and 245 s in two runs beside the same loops here, so
-# a check on it fails at random. This one measures the cause, which does not depend on the scheduler: the CPU
-# (user + system) that a second thread adds to a whole session of the classroom, where the pool
-# runs a few loops per scan. A sleeping worker adds little (0.98–1.09× measured); the old spin,
+# a check on it fails at random. This one measures the cause, which does not depend on the
+# scheduler: the CPU (user + system) that a second thread adds to a whole session of the
+# classroom, where the pool runs a few loops per scan. A sleeping worker adds little (0.98–1.09× measured); the old spin,
 # put back, made it 2.7×. Fails when two threads burn 1.5× one thread's CPU (+ 0.1 s), medians
 # of three runs each; also when the second thread was never woken (the check would measure
 # nothing), and when two threads change the trajectory or the map.
