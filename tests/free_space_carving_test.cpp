@@ -9,6 +9,7 @@
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/maps/point_map.hpp"
 #include "scanloc/maps/point_map_io.hpp"
+#include "scanloc/simulation/simulated_scan.hpp"
 #include "test_support.hpp"
 
 namespace scanloc {
@@ -175,6 +176,50 @@ TEST(CarvingOracleTest, BlockCullingRemovesExactlyThePointsTheRuleRemovesPointBy
   }
   EXPECT_GT(removed_total, 1000u);  // the rule had work to do (1,233 when written)
   EXPECT_LT(removed_total, 19000u);
+}
+
+// Carved points leave the lists that radius searches and the simulated scans' block walk read:
+// after each carving, both still see exactly the live points, as a pass over every point does.
+TEST(CarvingOracleTest, SearchesAndSimulatedScansOfACarvedMapSeeExactlyItsLivePoints) {
+  LineMap building = testing::RingBuilding();
+  PointMap map(PointMapOptions{0.0, 0.3});
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> coordinate(-18.0, 42.0), yaw(-M_PI, M_PI);
+  std::vector<Eigen::Vector2d> clutter;
+  for (int i = 0; i < 20000; ++i) clutter.emplace_back(coordinate(rng), coordinate(rng) - 10.0);
+  map.Insert(clutter, std::vector<double>(clutter.size(), 0.05));
+  std::size_t removed_total = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    const Pose2D pose{coordinate(rng) / 3.0 + 6.0, coordinate(rng) / 4.0 + 2.0, yaw(rng)};
+    const LaserScan scan = testing::NoisyScan(building, pose, 720, 0.01, trial);
+    for (int again = 0; again < 2; ++again)
+      removed_total += map.CarveFreeSpace(scan, pose, 0.1, 0.01);
+    // Radii for the search cells (0.3, 0.7 m), the tree (3 m) and the whole map (100 m).
+    for (const double radius : {0.3, 0.7, 3.0, 100.0})
+      for (int query = 0; query < 5; ++query) {
+        const Eigen::Vector2d centre(coordinate(rng), coordinate(rng) - 10.0);
+        std::vector<std::pair<std::uint32_t, double>> expected;
+        for (std::size_t i = 0; i < map.size(); ++i) {
+          const double d2 = (map.point(i) - centre).squaredNorm();
+          if (map.alive(i) && d2 < radius * radius)
+            expected.emplace_back(static_cast<std::uint32_t>(i), d2);
+        }
+        auto found = map.RadiusSearch(centre, radius);
+        std::sort(found.begin(), found.end());
+        ASSERT_EQ(found, expected) << "trial " << trial << " radius " << radius;
+      }
+    for (const Pose2D& at : {pose, Pose2D{coordinate(rng) / 2.0, coordinate(rng) / 2.0, 0.3}}) {
+      const SimulatedScan walked = SimulateFromPoints(map, scan.layout, at);
+      const SimulatedScan every = SimulateFromPointsBruteForce(map, scan.layout, at);
+      for (std::size_t k = 0; k < scan.size(); ++k) {
+        ASSERT_EQ(walked.IsValid(k), every.IsValid(k)) << "trial " << trial << " beam " << k;
+        if (!walked.IsValid(k)) continue;
+        ASSERT_EQ(walked.ranges_m[k], every.ranges_m[k]) << "trial " << trial << " beam " << k;
+        ASSERT_EQ(walked.hit_index[k], every.hit_index[k]) << "trial " << trial << " beam " << k;
+      }
+    }
+  }
+  EXPECT_GT(removed_total, 500u);  // carving had work to do
 }
 
 TEST_F(CarvingTest, NegativeMarginIsRefused) {
