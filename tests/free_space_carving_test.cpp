@@ -147,17 +147,24 @@ std::vector<std::size_t> SeenThrough(const PointMap& map, const LaserScan& scan,
   return seen;
 }
 
+// 20,000 points over a 60 m square around the ring building, one sample each, no merging.
+PointMap ClutterMap(std::mt19937& rng) {
+  std::uniform_real_distribution<double> coordinate(-18.0, 42.0);
+  std::vector<Eigen::Vector2d> clutter;
+  for (int i = 0; i < 20000; ++i) clutter.emplace_back(coordinate(rng), coordinate(rng) - 10.0);
+  PointMap map(PointMapOptions{0.0, 0.3});
+  map.Insert(clutter, std::vector<double>(clutter.size(), 0.05));
+  return map;
+}
+
 TEST(CarvingOracleTest, BlockCullingRemovesExactlyThePointsTheRuleRemovesPointByPoint) {
   // Clutter over a 60 m square (one sample each, so a point goes at its second miss) carved by
   // scans of the ring building from random postures inside and outside it, half and full circle,
   // short and long range.
   LineMap building = testing::RingBuilding();
-  PointMap map(PointMapOptions{0.0, 0.3});
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> coordinate(-18.0, 42.0), yaw(-M_PI, M_PI);
-  std::vector<Eigen::Vector2d> clutter;
-  for (int i = 0; i < 20000; ++i) clutter.emplace_back(coordinate(rng), coordinate(rng) - 10.0);
-  map.Insert(clutter, std::vector<double>(clutter.size(), 0.05));
+  PointMap map = ClutterMap(rng);
   std::vector<int> misses(map.size(), 0);
   std::size_t removed_total = 0;
   for (int trial = 0; trial < 24; ++trial) {
@@ -182,12 +189,9 @@ TEST(CarvingOracleTest, BlockCullingRemovesExactlyThePointsTheRuleRemovesPointBy
 // after each carving, both still see exactly the live points, as a pass over every point does.
 TEST(CarvingOracleTest, SearchesAndSimulatedScansOfACarvedMapSeeExactlyItsLivePoints) {
   LineMap building = testing::RingBuilding();
-  PointMap map(PointMapOptions{0.0, 0.3});
   std::mt19937 rng(8);
   std::uniform_real_distribution<double> coordinate(-18.0, 42.0), yaw(-M_PI, M_PI);
-  std::vector<Eigen::Vector2d> clutter;
-  for (int i = 0; i < 20000; ++i) clutter.emplace_back(coordinate(rng), coordinate(rng) - 10.0);
-  map.Insert(clutter, std::vector<double>(clutter.size(), 0.05));
+  PointMap map = ClutterMap(rng);
   std::size_t removed_total = 0;
   for (int trial = 0; trial < 12; ++trial) {
     const Pose2D pose{coordinate(rng) / 3.0 + 6.0, coordinate(rng) / 4.0 + 2.0, yaw(rng)};
