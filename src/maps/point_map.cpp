@@ -14,6 +14,7 @@
 #include <nanoflann.hpp>
 #pragma GCC diagnostic pop
 
+#include "cell_table.hpp"
 #include "scanloc/maps/line_map.hpp"
 
 namespace scanloc {
@@ -114,7 +115,7 @@ struct PointMap::Storage {
   // Bounds of `indexed`, every point ever added: a search whose radius covers them lists the
   // live points directly instead of walking the tree to every leaf.
   Eigen::AlignedBox2d bounds;
-  std::unordered_map<std::int64_t, std::uint32_t> occupied_cells;
+  CellTable occupied_cells;
   // The live points by the kSearchCellM cell of their first sample, in the order they were added
   // (carving takes a point out of its cell and its block).
   std::unordered_map<std::int64_t, std::vector<std::uint32_t>> search_cells;
@@ -190,7 +191,7 @@ std::size_t PointMap::Add(const std::vector<Eigen::Vector2d>& points_world,
     bool inserted_new = true;
     std::uint32_t existing = 0;
     if (options_.cell_size_m > 0.0 && !merge) {
-      s.occupied_cells.emplace(CellKey(p, options_.cell_size_m),
+      s.occupied_cells.Emplace(CellKey(p, options_.cell_size_m),
                                static_cast<std::uint32_t>(s.points.size()));
     } else if (options_.cell_size_m > 0.0) {
       const double c = options_.cell_size_m;
@@ -198,17 +199,18 @@ std::size_t PointMap::Add(const std::vector<Eigen::Vector2d>& points_world,
       double nearest2 = std::numeric_limits<double>::infinity();
       for (int dx = -1; dx <= 1; ++dx)
         for (int dy = -1; dy <= 1; ++dy) {
-          const auto it = s.occupied_cells.find(CellKey(p + Eigen::Vector2d(dx * c, dy * c), c));
-          if (it == s.occupied_cells.end()) continue;
-          const double d2 = (s.indexed[it->second] - p).squaredNorm();
+          const std::uint32_t held =
+              s.occupied_cells.Find(CellKey(p + Eigen::Vector2d(dx * c, dy * c), c));
+          if (held == CellTable::kNone) continue;
+          const double d2 = (s.indexed[held] - p).squaredNorm();
           if (d2 < nearest2 && (d2 < reach2 || (dx == 0 && dy == 0))) {
             nearest2 = d2;
-            existing = it->second;
+            existing = held;
             inserted_new = false;
           }
         }
       if (inserted_new)
-        s.occupied_cells.emplace(CellKey(p, c), static_cast<std::uint32_t>(s.points.size()));
+        s.occupied_cells.Emplace(CellKey(p, c), static_cast<std::uint32_t>(s.points.size()));
     }
     Eigen::Vector2f normal = Eigen::Vector2f::Zero();
     if (!normals_world.empty() && normals_world[i].allFinite() && normals_world[i].norm() > 0.5)
@@ -346,10 +348,8 @@ std::size_t PointMap::CarveFreeSpace(const LaserScan& scan, const Pose2D& T_worl
     EraseIndex(
         s.blocks.at(CellKey(BlockIndex(first_sample.x()), BlockIndex(first_sample.y()))).slots,
         index);
-    if (options_.cell_size_m > 0.0) {
-      const auto cell = s.occupied_cells.find(CellKey(s.indexed[index], options_.cell_size_m));
-      if (cell != s.occupied_cells.end() && cell->second == index) s.occupied_cells.erase(cell);
-    }
+    if (options_.cell_size_m > 0.0)
+      s.occupied_cells.EraseIfHolds(CellKey(s.indexed[index], options_.cell_size_m), index);
     ++removed;
   }
   s.removed += removed;
