@@ -55,24 +55,33 @@ Eigen::Vector2i LikelihoodField::Cell(const Eigen::Vector2d& world) const {
   return {static_cast<int>(std::floor(c.x())), static_cast<int>(std::floor(c.y()))};
 }
 
-// Raises the cells within kCutoffSigmas·σ of the point to exp(−d²/2σ²) of their centre's distance,
-// rounded to the nearest quantum.
+// Raises the cells within kCutoffSigmas·σ of the point (a square of them) to exp(−d²/2σ²) of their
+// centre's distance, rounded to the nearest quantum. The Gaussian is separable: one exp per
+// column and one per row, where a cell by cell exp made building a field a tenth of a loop-closing
+// session. A row whose largest value rounds to 0 changes no cell and is skipped.
 void LikelihoodField::Splat(const Eigen::Vector2d& point, double sigma_m) {
   const int reach = static_cast<int>(std::ceil(kCutoffSigmas * sigma_m / resolution_m_));
   const Eigen::Vector2i centre = Cell(point);
+  const int x0 = std::max(0, centre.x() - reach), x1 = std::min(width_ - 1, centre.x() + reach);
+  const int y0 = std::max(0, centre.y() - reach), y1 = std::min(height_ - 1, centre.y() + reach);
+  if (x0 > x1 || y0 > y1) return;
   const double inv_two_sigma2 = 1.0 / (2.0 * sigma_m * sigma_m);
+  auto gaussian = [&](int index, double origin, double coordinate) {
+    const double d = origin + resolution_m_ * (index + 0.5) - coordinate;
+    return std::exp(-(d * d) * inv_two_sigma2);
+  };
+  columns_.clear();
+  for (int ix = x0; ix <= x1; ++ix) columns_.push_back(gaussian(ix, origin_world_.x(), point.x()));
   std::vector<std::uint8_t>& field = levels_[0];
-  for (int iy = std::max(0, centre.y() - reach); iy <= std::min(height_ - 1, centre.y() + reach);
-       ++iy)
-    for (int ix = std::max(0, centre.x() - reach); ix <= std::min(width_ - 1, centre.x() + reach);
-         ++ix) {
-      const Eigen::Vector2d cell_centre =
-          origin_world_ + resolution_m_ * Eigen::Vector2d(ix + 0.5, iy + 0.5);
-      const auto value = static_cast<std::uint8_t>(
-          std::lround(255.0 * std::exp(-(cell_centre - point).squaredNorm() * inv_two_sigma2)));
-      std::uint8_t& cell = field[static_cast<std::size_t>(iy) * width_ + ix];
-      cell = std::max(cell, value);
+  for (int iy = y0; iy <= y1; ++iy) {
+    const double row = 255.0 * gaussian(iy, origin_world_.y(), point.y());
+    if (row < 0.5) continue;
+    std::uint8_t* cells = field.data() + static_cast<std::size_t>(iy) * width_;
+    for (int ix = x0; ix <= x1; ++ix) {
+      const auto value = static_cast<std::uint8_t>(std::lround(row * columns_[ix - x0]));
+      cells[ix] = std::max(cells[ix], value);
     }
+  }
 }
 
 // Level h's cell (x, y) = the maximum of level h−1 over (x, y), (x+s, y), (x, y+s), (x+s, y+s),

@@ -69,6 +69,7 @@ class LikelihoodField {
   double resolution_m_ = 1.0;
   int width_ = 0, height_ = 0;
   std::vector<std::vector<std::uint8_t>> levels_;
+  std::vector<double> columns_;  // Splat's Gaussian per column, kept to save an allocation
 };
 
 }  // namespace scanloc
