@@ -120,5 +120,28 @@ TEST(LikelihoodField, ASumOverMovedCellsEqualsTheirValuesAddedOutsideCellsAdding
   EXPECT_GT(outside, 0u);
 }
 
+TEST(LikelihoodField, SplitCellsSumToTheSameQuantaAsCellsReadOneByOneAtEveryMoveWithinTheirReach) {
+  const LikelihoodField field(ScatteredPoints(60, 7), {0.0, 0.0}, {2.0, 1.3});
+  std::mt19937 random(11);
+  // Cells deep inside, near every edge and beyond the grid, so that both lists are used.
+  std::uniform_int_distribution<int> x(-8, field.width() + 8), y(-8, field.height() + 8);
+  std::vector<Eigen::Vector2i> cells;
+  for (int i = 0; i < 300; ++i) cells.emplace_back(x(random), y(random));
+  const int reach = 4;
+  const LikelihoodField::MovedCells split = field.Split(cells, reach);
+  EXPECT_EQ(split.size(), cells.size());
+  EXPECT_GT(split.inside.size(), 50u);
+  EXPECT_GT(split.edge.size(), 50u);
+  for (int level = 0; level < field.levels(); ++level)
+    for (int dy = -reach; dy <= reach; ++dy)
+      for (int dx = -reach; dx <= reach; ++dx)
+        ASSERT_EQ(
+            static_cast<float>(field.SumQuanta(level, split, dx, dy)) * LikelihoodField::kQuantum,
+            field.Sum(level, cells, dx, dy))
+            << level << " " << dx << " " << dy;
+  EXPECT_THROW(field.SumQuanta(0, split, reach + 1, 0), std::out_of_range);
+  EXPECT_THROW(field.SumQuanta(0, split, 0, -reach - 1), std::out_of_range);
+}
+
 }  // namespace
 }  // namespace scanloc

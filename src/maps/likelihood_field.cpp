@@ -55,6 +55,22 @@ Eigen::Vector2i LikelihoodField::Cell(const Eigen::Vector2d& world) const {
   return {static_cast<int>(std::floor(c.x())), static_cast<int>(std::floor(c.y()))};
 }
 
+LikelihoodField::MovedCells LikelihoodField::Split(const std::vector<Eigen::Vector2i>& cells,
+                                                   int reach) const {
+  if (reach < 0) throw std::invalid_argument("LikelihoodField::Split: reach must be >= 0");
+  MovedCells split;
+  split.reach = reach;
+  for (const Eigen::Vector2i& c : cells) {
+    const bool inside = c.x() - reach >= 0 && c.x() + reach < width_ && c.y() - reach >= 0 &&
+                        c.y() + reach < height_;
+    if (inside)
+      split.inside.push_back(c.y() * width_ + c.x());
+    else
+      split.edge.push_back(c);
+  }
+  return split;
+}
+
 // Raises the cells within kCutoffSigmas·σ of the point (a square of them) to exp(−d²/2σ²) of their
 // centre's distance, rounded to the nearest quantum. The Gaussian is separable: one exp per
 // column and one per row, where a cell by cell exp made building a field a tenth of a loop-closing

@@ -112,13 +112,14 @@ Headings SearchHeadings(double half_yaw_rad, double resolution_m, double max_ran
 class BranchAndBound {
  public:
   using NearFn = std::function<bool(const Node&, const Node&)>;
-  BranchAndBound(const LikelihoodField& field, std::vector<std::vector<Eigen::Vector2i>> cells,
-                 int half_cells, std::size_t pool, NearFn near)
-      : field_(field),
-        cells_(std::move(cells)),
-        half_(half_cells),
-        pool_(pool),
-        near_(std::move(near)) {}
+  BranchAndBound(const LikelihoodField& field,
+                 const std::vector<std::vector<Eigen::Vector2i>>& cells, int half_cells,
+                 std::size_t pool, NearFn near)
+      : field_(field), half_(half_cells), pool_(pool), near_(std::move(near)) {
+    // Every node's move lies within ±half cells (children never pass +half).
+    for (const std::vector<Eigen::Vector2i>& heading : cells)
+      cells_.push_back(field.Split(heading, half_cells));
+  }
 
   // The distinct best leaves, best first, found depth first from the top-level nodes of every
   // heading, best first.
@@ -141,8 +142,10 @@ class BranchAndBound {
                      [](const Node& a, const Node& b) { return a.score > b.score; });
   }
   Node Scored(Node node) {
-    const float sum = field_.Sum(node.level, cells_[node.heading], node.ox, node.oy);
-    node.score = cells_[node.heading].empty() ? 0.0f : sum / cells_[node.heading].size();
+    const LikelihoodField::MovedCells& cells = cells_[node.heading];
+    const float sum = static_cast<float>(field_.SumQuanta(node.level, cells, node.ox, node.oy)) *
+                      LikelihoodField::kQuantum;
+    node.score = cells.size() == 0 ? 0.0f : sum / cells.size();
     ++scored_;
     return node;
   }
@@ -187,7 +190,7 @@ class BranchAndBound {
   }
 
   const LikelihoodField& field_;
-  std::vector<std::vector<Eigen::Vector2i>> cells_;  // per heading: beam cells at offset 0
+  std::vector<LikelihoodField::MovedCells> cells_;  // per heading: beam cells at offset 0
   int half_;
   std::size_t pool_;
   NearFn near_;
@@ -273,8 +276,8 @@ WideSearchResult WideSearch(const MapView& map, const LaserScan& scan, const Sea
     return std::hypot(a.ox - b.ox, a.oy - b.oy) < separation_cells &&
            headings.Apart(a.heading, b.heading) < separation_headings;
   };
-  BranchAndBound search(field, std::move(cells), half_cells,
-                        static_cast<std::size_t>(options.max_candidates), near);
+  BranchAndBound search(field, cells, half_cells, static_cast<std::size_t>(options.max_candidates),
+                        near);
   for (const Node& leaf : search.Run(result.nodes_scored))
     result.candidates.push_back({Pose2D{window.centre.x_m + leaf.ox * res,
                                         window.centre.y_m + leaf.oy * res, yaws[leaf.heading]},

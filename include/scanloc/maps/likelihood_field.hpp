@@ -9,7 +9,10 @@
 // bound stays the exact maximum of what its postures score.
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <cstdint>
+#include <cstdlib>
+#include <stdexcept>
 #include <vector>
 
 namespace scanloc {
@@ -53,6 +56,32 @@ class LikelihoodField {
         sum += values[static_cast<std::size_t>(iy) * width_ + ix];
     }
     return static_cast<float>(sum) * kQuantum;
+  }
+  // Cells to be summed at every move (dx, dy) with |dx|, |dy| <= reach: those inside the grid
+  // for every such move as offsets into it (y·width + x, read without a bounds test), the rest as
+  // they are. A search sums one scan's cells at many moves; most of them never leave the grid.
+  struct MovedCells {
+    int reach = 0;
+    std::vector<std::int32_t> inside;
+    std::vector<Eigen::Vector2i> edge;
+    std::size_t size() const { return inside.size() + edge.size(); }
+  };
+  MovedCells Split(const std::vector<Eigen::Vector2i>& cells, int reach) const;
+  // Sum's total for split cells, in quanta (the same whole number for the same cells and move).
+  unsigned SumQuanta(int level, const MovedCells& cells, int dx, int dy) const {
+    if (std::abs(dx) > cells.reach || std::abs(dy) > cells.reach)
+      throw std::out_of_range("LikelihoodField::SumQuanta: a move beyond the cells' reach");
+    const std::uint8_t* values = levels_[level].data();
+    const std::ptrdiff_t offset = static_cast<std::ptrdiff_t>(dy) * width_ + dx;
+    unsigned sum = 0;
+    for (const std::int32_t index : cells.inside) sum += values[index + offset];
+    for (const Eigen::Vector2i& c : cells.edge) {
+      const int ix = c.x() + dx, iy = c.y() + dy;
+      if (static_cast<unsigned>(ix) < static_cast<unsigned>(width_) &&
+          static_cast<unsigned>(iy) < static_cast<unsigned>(height_))
+        sum += values[static_cast<std::size_t>(iy) * width_ + ix];
+    }
+    return sum;
   }
   // The cell holding a world point (may lie outside the grid).
   Eigen::Vector2i Cell(const Eigen::Vector2d& world) const;
