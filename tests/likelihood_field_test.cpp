@@ -97,13 +97,19 @@ TEST(LikelihoodField, RebuiltInTheStorageOfAnotherFieldItEqualsOneBuiltAfresh) {
   EXPECT_EQ(reused.width(), fresh.width());
 }
 
-TEST(LikelihoodField, ASumOverMovedCellsEqualsTheirValuesAddedOutsideCellsAddingZero) {
-  const LikelihoodField field(ScatteredPoints(60, 7), {0.0, 0.0}, {2.0, 1.3});
-  std::mt19937 random(5);
-  // Cells inside, on the edges and beyond the grid on every side.
+// `count` random cells inside, on the edges and up to 8 cells beyond the grid on every side.
+std::vector<Eigen::Vector2i> CellsInAndAround(const LikelihoodField& field, int count,
+                                              unsigned seed) {
+  std::mt19937 random(seed);
   std::uniform_int_distribution<int> x(-8, field.width() + 8), y(-8, field.height() + 8);
   std::vector<Eigen::Vector2i> cells;
-  for (int i = 0; i < 200; ++i) cells.emplace_back(x(random), y(random));
+  for (int i = 0; i < count; ++i) cells.emplace_back(x(random), y(random));
+  return cells;
+}
+
+TEST(LikelihoodField, ASumOverMovedCellsEqualsTheirValuesAddedOutsideCellsAddingZero) {
+  const LikelihoodField field(ScatteredPoints(60, 7), {0.0, 0.0}, {2.0, 1.3});
+  const std::vector<Eigen::Vector2i> cells = CellsInAndAround(field, 200, 5);
   std::size_t outside = 0;
   for (int level = 0; level < field.levels(); ++level)
     for (const auto& [dx, dy] : {std::pair{0, 0}, std::pair{-5, 3}, std::pair{7, -9}}) {
@@ -122,11 +128,8 @@ TEST(LikelihoodField, ASumOverMovedCellsEqualsTheirValuesAddedOutsideCellsAdding
 
 TEST(LikelihoodField, SplitCellsSumToTheSameQuantaAsCellsReadOneByOneAtEveryMoveWithinTheirReach) {
   const LikelihoodField field(ScatteredPoints(60, 7), {0.0, 0.0}, {2.0, 1.3});
-  std::mt19937 random(11);
   // Cells deep inside, near every edge and beyond the grid, so that both lists are used.
-  std::uniform_int_distribution<int> x(-8, field.width() + 8), y(-8, field.height() + 8);
-  std::vector<Eigen::Vector2i> cells;
-  for (int i = 0; i < 300; ++i) cells.emplace_back(x(random), y(random));
+  const std::vector<Eigen::Vector2i> cells = CellsInAndAround(field, 300, 11);
   const int reach = 4;
   const LikelihoodField::MovedCells split = field.Split(cells, reach);
   EXPECT_EQ(split.size(), cells.size());
