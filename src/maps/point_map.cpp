@@ -55,6 +55,32 @@ std::int64_t CellKey(const Eigen::Vector2d& p, double cell_size_m) {
   return CellKey(CellIndex(p.x(), cell_size_m), CellIndex(p.y(), cell_size_m));
 }
 
+// The point held by one of the 3×3 cells around `p` whose first sample is nearest it: within one
+// cell diagonal, or anywhere in p's own cell; kNone if none. The cells' indices are those of p
+// moved by a cell each way (six divisions, not eighteen: each is needed thrice).
+std::uint32_t NearestHeld(const CellTable& cells, const std::vector<Eigen::Vector2d>& first_samples,
+                          const Eigen::Vector2d& p, double c) {
+  std::int64_t ix[3], iy[3];
+  for (int k = 0; k < 3; ++k) {
+    ix[k] = CellIndex(p.x() + (k - 1) * c, c);
+    iy[k] = CellIndex(p.y() + (k - 1) * c, c);
+  }
+  const double reach2 = 2.0 * c * c;
+  double nearest2 = std::numeric_limits<double>::infinity();
+  std::uint32_t nearest = CellTable::kNone;
+  for (int dx = 0; dx < 3; ++dx)
+    for (int dy = 0; dy < 3; ++dy) {
+      const std::uint32_t held = cells.Find(CellKey(ix[dx], iy[dy]));
+      if (held == CellTable::kNone) continue;
+      const double d2 = (first_samples[held] - p).squaredNorm();
+      if (d2 < nearest2 && (d2 < reach2 || (dx == 1 && dy == 1))) {
+        nearest2 = d2;
+        nearest = held;
+      }
+    }
+  return nearest;
+}
+
 // Removes `index` from a list of point indices, keeping the others' order.
 void EraseIndex(std::vector<std::uint32_t>& indices, std::uint32_t index) {
   const auto found = std::find(indices.begin(), indices.end(), index);
@@ -194,23 +220,11 @@ std::size_t PointMap::Add(const std::vector<Eigen::Vector2d>& points_world,
       s.occupied_cells.Emplace(CellKey(p, options_.cell_size_m),
                                static_cast<std::uint32_t>(s.points.size()));
     } else if (options_.cell_size_m > 0.0) {
-      const double c = options_.cell_size_m;
-      const double reach2 = 2.0 * c * c;
-      double nearest2 = std::numeric_limits<double>::infinity();
-      for (int dx = -1; dx <= 1; ++dx)
-        for (int dy = -1; dy <= 1; ++dy) {
-          const std::uint32_t held =
-              s.occupied_cells.Find(CellKey(p + Eigen::Vector2d(dx * c, dy * c), c));
-          if (held == CellTable::kNone) continue;
-          const double d2 = (s.indexed[held] - p).squaredNorm();
-          if (d2 < nearest2 && (d2 < reach2 || (dx == 0 && dy == 0))) {
-            nearest2 = d2;
-            existing = held;
-            inserted_new = false;
-          }
-        }
+      existing = NearestHeld(s.occupied_cells, s.indexed, p, options_.cell_size_m);
+      inserted_new = existing == CellTable::kNone;
       if (inserted_new)
-        s.occupied_cells.Emplace(CellKey(p, c), static_cast<std::uint32_t>(s.points.size()));
+        s.occupied_cells.Emplace(CellKey(p, options_.cell_size_m),
+                                 static_cast<std::uint32_t>(s.points.size()));
     }
     Eigen::Vector2f normal = Eigen::Vector2f::Zero();
     if (!normals_world.empty() && normals_world[i].allFinite() && normals_world[i].norm() > 0.5)
