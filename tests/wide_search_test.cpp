@@ -75,6 +75,32 @@ TEST_F(WideSearchTest, DistinctCandidatesAreApartByTheSeparation) {
     }
 }
 
+TEST_F(WideSearchTest, SkippingBlocksThatKeptBetterPosturesShadowChangesNoCandidateAndScoresFewer) {
+  // Several distinct candidates from wide windows around the room: the pool's threshold stays
+  // low, so the slopes of the best peaks are searched and blocks on them are shadowed.
+  int shadowed_searches = 0;
+  for (const SearchWindow& window :
+       {SearchWindow{truth_, 1.5, 0.5}, SearchWindow{{2.0, 3.0, 1.2}, 2.0, 3.2},
+        SearchWindow{{4.0, 2.0, -0.4}, 1.0, 0.3}}) {
+    WideSearchOptions skipping;
+    skipping.max_candidates = 6;
+    WideSearchOptions searching = skipping;
+    searching.skip_shadowed_blocks = false;
+    const WideSearchResult fewer = WideSearch({&room_, nullptr}, scan_, window, skipping);
+    const WideSearchResult all = WideSearch({&room_, nullptr}, scan_, window, searching);
+    ASSERT_EQ(fewer.candidates.size(), all.candidates.size());
+    for (std::size_t i = 0; i < all.candidates.size(); ++i) {
+      const Pose2D& a = fewer.candidates[i].T_world_laser;
+      const Pose2D& b = all.candidates[i].T_world_laser;
+      EXPECT_TRUE(a.x_m == b.x_m && a.y_m == b.y_m && a.yaw_rad == b.yaw_rad) << i;
+      EXPECT_EQ(fewer.candidates[i].score, all.candidates[i].score) << i;
+    }
+    EXPECT_LE(fewer.nodes_scored, all.nodes_scored);
+    shadowed_searches += fewer.nodes_scored < all.nodes_scored;
+  }
+  EXPECT_EQ(shadowed_searches, 3);
+}
+
 TEST_F(WideSearchTest, AnEmptyMapOrAScanWithoutEchoGivesNoCandidate) {
   const SearchWindow window{truth_, 1.0, 0.3};
   EXPECT_TRUE(WideSearch({nullptr, nullptr}, scan_, window).candidates.empty());

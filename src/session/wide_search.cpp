@@ -109,13 +109,18 @@ Headings SearchHeadings(double half_yaw_rad, double resolution_m, double max_ran
 
 // Exact branch and bound over translations, every heading at the top: keeps the best leaves that
 // are distinct (no two `Near`), so that a second peak is not crowded out by the first one's slopes.
+// `near` must be a disc of moves (within some distance) and a test of headings alone.
 class BranchAndBound {
  public:
   using NearFn = std::function<bool(const Node&, const Node&)>;
   BranchAndBound(const LikelihoodField& field,
                  const std::vector<std::vector<Eigen::Vector2i>>& cells, int half_cells,
-                 std::size_t pool, NearFn near)
-      : field_(field), half_(half_cells), pool_(pool), near_(std::move(near)) {
+                 std::size_t pool, NearFn near, bool skip_shadowed)
+      : field_(field),
+        half_(half_cells),
+        pool_(pool),
+        near_(std::move(near)),
+        skip_shadowed_(skip_shadowed) {
     // Every node's move lies within ±half cells (children never pass +half).
     for (const std::vector<Eigen::Vector2i>& heading : cells)
       cells_.push_back(field.Split(heading, half_cells));
@@ -169,9 +174,27 @@ class BranchAndBound {
     best_.push_back(leaf);
   }
 
+  // True when every leaf of the node's block lies near one kept leaf that scores at least the
+  // node's bound: Offer would drop each of them and change nothing, so the block need not be
+  // searched. The block is a rectangle of moves of one heading and `near` a disc of moves (with a
+  // test of headings), so its four corners decide.
+  bool Shadowed(const Node& node) const {
+    const int last = (1 << node.level) - 1;
+    const int x1 = std::min(node.ox + last, half_), y1 = std::min(node.oy + last, half_);
+    for (const Node& kept : best_) {
+      if (kept.score < node.score) continue;
+      bool all = true;
+      for (const int y : {node.oy, y1})
+        for (const int x : {node.ox, x1}) all = all && near_({node.heading, x, y, 0}, kept);
+      if (all) return true;
+    }
+    return false;
+  }
+
   void Descend(const Node& node) {
     if (node.score <= Threshold()) return;
     if (node.level == 0) return Offer(node);
+    if (skip_shadowed_ && Shadowed(node)) return;
     const int step = 1 << (node.level - 1);
     // At most four children, kept on the stack and put best first by a stable insertion (the
     // order a stable sort gives, without its buffer on the heap at every node).
@@ -194,6 +217,7 @@ class BranchAndBound {
   int half_;
   std::size_t pool_;
   NearFn near_;
+  bool skip_shadowed_;
   std::vector<Node> best_;  // distinct leaves, at most pool_
   long long scored_ = 0;
 };
@@ -277,7 +301,7 @@ WideSearchResult WideSearch(const MapView& map, const LaserScan& scan, const Sea
            headings.Apart(a.heading, b.heading) < separation_headings;
   };
   BranchAndBound search(field, cells, half_cells, static_cast<std::size_t>(options.max_candidates),
-                        near);
+                        near, options.skip_shadowed_blocks);
   for (const Node& leaf : search.Run(result.nodes_scored))
     result.candidates.push_back({Pose2D{window.centre.x_m + leaf.ox * res,
                                         window.centre.y_m + leaf.oy * res, yaws[leaf.heading]},

@@ -34,6 +34,9 @@ struct WideSearchOptions {
   // Headings are searched a step apart that moves the farthest endpoint by one cell (Hess et al.
   // 2016), but not finer than this: the refinement that follows converges from within a degree.
   double min_heading_step_rad = 0.0087;
+  // Blocks whose every posture lies near a kept better one are not searched: they could not
+  // change the result (the same candidates either way; off only to show that in a test).
+  bool skip_shadowed_blocks = true;
   // Throws std::invalid_argument naming the first option out of its domain.
   void Validate() const;
 };
