@@ -4,7 +4,6 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -88,6 +87,20 @@ struct Headings {
     return full_circle ? std::min(d, count - d) : d;
   }
 };
+// Whether two nodes are not distinct: moves less than `cells` apart (a disc) and headings less
+// than `headings` steps apart. The headings and each axis are compared first (integers): a pair
+// an axis alone puts `cells` apart is never nearer, and most pairs are told apart without hypot.
+struct Near {
+  const Headings* search_headings = nullptr;
+  double cells = 0.0, headings = 0.0;
+  bool operator()(const Node& a, const Node& b) const {
+    if (!(search_headings->Apart(a.heading, b.heading) < headings)) return false;
+    const int dx = a.ox - b.ox, dy = a.oy - b.oy;
+    if (!(std::max(std::abs(dx), std::abs(dy)) < cells)) return false;
+    return std::hypot(dx, dy) < cells;
+  }
+};
+
 Headings SearchHeadings(double half_yaw_rad, double resolution_m, double max_range_m,
                         const WideSearchOptions& options) {
   Headings h;
@@ -109,18 +122,12 @@ Headings SearchHeadings(double half_yaw_rad, double resolution_m, double max_ran
 
 // Exact branch and bound over translations, every heading at the top: keeps the best leaves that
 // are distinct (no two `Near`), so that a second peak is not crowded out by the first one's slopes.
-// `near` must be a disc of moves (within some distance) and a test of headings alone.
 class BranchAndBound {
  public:
-  using NearFn = std::function<bool(const Node&, const Node&)>;
   BranchAndBound(const LikelihoodField& field,
                  const std::vector<std::vector<Eigen::Vector2i>>& cells, int half_cells,
-                 std::size_t pool, NearFn near, bool skip_shadowed)
-      : field_(field),
-        half_(half_cells),
-        pool_(pool),
-        near_(std::move(near)),
-        skip_shadowed_(skip_shadowed) {
+                 std::size_t pool, Near near, bool skip_shadowed)
+      : field_(field), half_(half_cells), pool_(pool), near_(near), skip_shadowed_(skip_shadowed) {
     // Every node's move lies within ±half cells (children never pass +half).
     for (const std::vector<Eigen::Vector2i>& heading : cells)
       cells_.push_back(field.Split(heading, half_cells));
@@ -216,7 +223,7 @@ class BranchAndBound {
   std::vector<LikelihoodField::MovedCells> cells_;  // per heading: beam cells at offset 0
   int half_;
   std::size_t pool_;
-  NearFn near_;
+  Near near_;
   bool skip_shadowed_;
   std::vector<Node> best_;  // distinct leaves, at most pool_
   long long scored_ = 0;
@@ -296,10 +303,7 @@ WideSearchResult WideSearch(const MapView& map, const LaserScan& scan, const Sea
   const int half_cells = static_cast<int>(std::ceil(window.half_width_m / res));
   const double separation_cells = options.min_separation_m / res;
   const double separation_headings = options.min_separation_rad / step_rad;
-  auto near = [&](const Node& a, const Node& b) {
-    return std::hypot(a.ox - b.ox, a.oy - b.oy) < separation_cells &&
-           headings.Apart(a.heading, b.heading) < separation_headings;
-  };
+  const Near near{&headings, separation_cells, separation_headings};
   BranchAndBound search(field, cells, half_cells, static_cast<std::size_t>(options.max_candidates),
                         near, options.skip_shadowed_blocks);
   for (const Node& leaf : search.Run(result.nodes_scored))
