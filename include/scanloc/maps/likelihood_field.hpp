@@ -47,15 +47,7 @@ class LikelihoodField {
   // The sum of level h's values over `cells`, each moved by (dx, dy): the score of a posture, read
   // in one pass over one level (cells outside the grid add 0), added exactly as whole quanta.
   float Sum(int level, const std::vector<Eigen::Vector2i>& cells, int dx, int dy) const {
-    const std::uint8_t* values = levels_[level].data();
-    unsigned sum = 0;
-    for (const Eigen::Vector2i& c : cells) {
-      const int ix = c.x() + dx, iy = c.y() + dy;
-      if (static_cast<unsigned>(ix) < static_cast<unsigned>(width_) &&
-          static_cast<unsigned>(iy) < static_cast<unsigned>(height_))
-        sum += values[static_cast<std::size_t>(iy) * width_ + ix];
-    }
-    return static_cast<float>(sum) * kQuantum;
+    return static_cast<float>(CheckedQuanta(levels_[level].data(), cells, dx, dy)) * kQuantum;
   }
   // Cells to be summed at every move (dx, dy) with |dx|, |dy| <= reach: those inside the grid
   // for every such move as offsets into it (y·width + x, read without a bounds test), the rest as
@@ -75,13 +67,7 @@ class LikelihoodField {
     const std::ptrdiff_t offset = static_cast<std::ptrdiff_t>(dy) * width_ + dx;
     unsigned sum = 0;
     for (const std::int32_t index : cells.inside) sum += values[index + offset];
-    for (const Eigen::Vector2i& c : cells.edge) {
-      const int ix = c.x() + dx, iy = c.y() + dy;
-      if (static_cast<unsigned>(ix) < static_cast<unsigned>(width_) &&
-          static_cast<unsigned>(iy) < static_cast<unsigned>(height_))
-        sum += values[static_cast<std::size_t>(iy) * width_ + ix];
-    }
-    return sum;
+    return sum + CheckedQuanta(values, cells.edge, dx, dy);
   }
   // The cell holding a world point (may lie outside the grid).
   Eigen::Vector2i Cell(const Eigen::Vector2d& world) const;
@@ -91,6 +77,19 @@ class LikelihoodField {
   double resolution_m() const { return resolution_m_; }
 
  private:
+  // The quanta of `values` (one level) over `cells` moved by (dx, dy), each tested against the
+  // grid's bounds (cells outside add 0).
+  unsigned CheckedQuanta(const std::uint8_t* values, const std::vector<Eigen::Vector2i>& cells,
+                         int dx, int dy) const {
+    unsigned sum = 0;
+    for (const Eigen::Vector2i& c : cells) {
+      const int ix = c.x() + dx, iy = c.y() + dy;
+      if (static_cast<unsigned>(ix) < static_cast<unsigned>(width_) &&
+          static_cast<unsigned>(iy) < static_cast<unsigned>(height_))
+        sum += values[static_cast<std::size_t>(iy) * width_ + ix];
+    }
+    return sum;
+  }
   void Splat(const Eigen::Vector2d& point, double sigma_m);
   void BuildLevel(int level);
 
