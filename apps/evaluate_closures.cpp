@@ -67,8 +67,8 @@ RunClosures ReadRunClosures(const std::filesystem::path& folder, const Iteration
   }
   if (run.tried == 0)
     throw std::runtime_error(records_path +
-                             ": no loop closure was tried (was the session run with --set "
-                             "loop_closure.enabled=true?)");
+                             ": no loop closure was tried (was the session run with "
+                             "loop_closure.enabled=false, or too short to come back?)");
   if (run.measurements.empty())
     throw std::runtime_error(records_path + ": " + std::to_string(run.tried) +
                              " loop closures were tried and none refined a posture to measure");

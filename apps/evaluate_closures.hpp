@@ -8,7 +8,7 @@
 namespace scanloc::app {
 
 struct ClosureEvaluationArguments {
-  std::string run_folder;                         // a session's, run with loop_closure.enabled=true
+  std::string run_folder;                         // a session's, run with loop closure on
   std::string reference_path;                     // `t x y θ` (corrected poses) or TUM
   double tolerance_s = 1e-3;                      // timestamp matching
   double max_error_m = 0.1, max_error_deg = 1.0;  // a closure within both is right

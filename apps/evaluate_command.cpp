@@ -103,7 +103,7 @@ void RegisterEvaluateCommand(CLI::App& app) {
   CLI::Option* closures =
       command
           ->add_option("--closures", a->closures.run_folder,
-                       "a session's run folder (loop_closure.enabled=true): score its closures")
+                       "a session's run folder (loop closure on, the default): score its closures")
           ->check(CLI::ExistingDirectory)
           ->excludes(trajectory_option)
           ->excludes(relations_option);

@@ -176,6 +176,9 @@ TEST(LoopCloser, WithWindowSigmasTheWindowSpansTheGraphsUncertaintyAndBeyondItsM
   const Lap lap = DriveRing(world);
   LoopClosureOptions options = Enabled();
   options.window_sigmas = 3.0;
+  // Floors wide enough that the chain's uncertainty outgrows the window's maxima within the lap.
+  options.sigma_floor_m = 0.02;
+  options.sigma_floor_rad = 0.005;
   LoopCloser closer(options, LaserMounting{});
   std::size_t searched = 0, too_uncertain = 0;
   bool closed = false;
@@ -183,8 +186,9 @@ TEST(LoopCloser, WithWindowSigmasTheWindowSpansTheGraphsUncertaintyAndBeyondItsM
     closer.AddNode(i, lap.scans[i], lap.truth[i], std::nullopt);
     const auto attempt = closer.MaybeClose(LocalisationOptions{}, PointMapOptions{});
     if (!attempt) continue;
-    // Along the chain only the floors (0.005 rad per node) add up; a closure kept shortens the way.
-    const double chain_rad = 0.005 * std::sqrt(double(attempt->node - attempt->old_node));
+    // Along the chain only the floors (per node) add up; a closure kept shortens the way.
+    const double chain_rad =
+        options.sigma_floor_rad * std::sqrt(double(attempt->node - attempt->old_node));
     if (!closed) {
       EXPECT_NEAR(attempt->chain_sigma_rad, chain_rad, 1e-9) << i;
     } else {

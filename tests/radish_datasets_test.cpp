@@ -60,11 +60,13 @@ TEST_F(SessionOnRadishLog, OrebroWithItsOwnNoReturnCodeStaysWithin40CentimetresO
   EXPECT_NEAR(Summary()["no_return_m"].get<double>(), 32.76, 0.01);
 }
 
-// Measured 2026-11-25: 0.333 m mean (0.331–0.334 under perturbations); the log has PARAM lines
-// of five and six fields.
-TEST_F(SessionOnRadishLog, FhwWithBothParamFormsStaysWithin45CentimetresOnAverage) {
+// The log has PARAM lines of five and six fields. Measured 2026-11-25 without loop closure:
+// 0.333 m mean (0.331–0.334 under perturbations); 2026-11-29 with loop closure on by default:
+// 0.458 m (0.458–0.526), the session lost once it tracks only its newest 10 m of nodes
+// (docs/BENCHMARKS.md, "Loop closure on by default").
+TEST_F(SessionOnRadishLog, FhwWithBothParamFormsStaysWithin55CentimetresOnAverage) {
   SKIP_WITHOUT_LOGS();
-  EXPECT_LT(Run("fhw", "noisy").translation_m.mean, 0.45);
+  EXPECT_LT(Run("fhw", "noisy").translation_m.mean, 0.55);
   EXPECT_TRUE(run_.exited && run_.exit_code == 0) << run_;
 }
 
@@ -74,6 +76,8 @@ TEST_F(SessionOnRadishLog, FhwWithBothParamFormsStaysWithin45CentimetresOnAverag
 // signature in force (500 confirmed scans) and low-overlap scans keeping the prediction, measured
 // 2026-11-25: perfect odometry 1.015 m and 1.417 m mean (1.0–4.1 m and 0.7–1.7 m under
 // perturbations of the defaults), noisy odometry 1.844 m and 2.698 m (1.8–3.7 m, 1.7–2.7 m).
+// With loop closure on by default (2026-11-29): perfect 0.792 m and 0.346 m (0.79–2.31 m,
+// 0.33–1.58 m), noisy 0.601 m and 0.739 m (0.58–2.20 m, 0.50–1.86 m).
 TEST_F(SessionOnRadishLog, EdmontonAndAcapulcoWithPerfectOdometryStayWithinFiveMetresOnAverage) {
   SKIP_WITHOUT_LOGS();
   EXPECT_LT(Run("edmonton", "exact").translation_m.mean, 5.0);

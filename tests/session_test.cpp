@@ -77,6 +77,30 @@ TEST(Session, TracksALoopWithoutAMapWithinTwoCentimetresAndFiveMilliradians) {
   EXPECT_GT(session.point_map().size(), 300u);
 }
 
+TEST(Session, WithLoopClosureTheSavedMapItStartedOnSurvivesTheRenderFromItsNodes) {
+  // A saved map of the room (its first scan) and of a wall no beam of the loop reaches (beyond
+  // the room's own walls): the map the session ends with, rendered from its nodes (loop closure,
+  // tracking the newest ones), must still hold that wall point for point.
+  const Sequence sequence = LoopAroundTheRoom(3);
+  PointMap saved;
+  saved.InsertScan(sequence.iterations.front().scan, sequence.truth.front());
+  const std::size_t room_points = saved.live_size();
+  std::vector<Eigen::Vector2d> wall;
+  for (int i = 0; i <= 40; ++i) wall.push_back({0.1 * i, 20.0});
+  saved.Restore(wall, std::vector<double>(wall.size(), 0.1));
+  SessionOptions options;
+  ASSERT_TRUE(options.loop_closure.enabled);
+  ASSERT_GT(options.loop_closure.tracking_path_m, 0.0);
+  options.initial_pose = sequence.truth.front();
+  Session session(SessionConfig{options, {}}, {}, {}, std::move(saved));
+  for (const Iteration& iteration : sequence.iterations) session.Process(iteration);
+  session.Finish();
+  const PointMap& map = session.point_map();
+  EXPECT_GT(map.live_size(), wall.size() + room_points / 2);  // the room's walls too
+  for (const Eigen::Vector2d& p : wall)
+    EXPECT_EQ(map.RadiusSearch(p, 1e-6).size(), 1u) << p.transpose();
+}
+
 TEST(Session, OdometryAloneDriftsWhereTheSessionDoesNot) {
   // The guard that the test above measures the session, not the odometry: dead reckoning from
   // the same start strays well beyond the session's 2 cm along the loop.

@@ -363,9 +363,20 @@ bool LoopCloser::Finish() {
   return largest_shift_m > options_.render_min_shift_m;
 }
 
+void LoopCloser::SetPriorMap(const PointMap& map) {
+  prior_ = {};
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    if (!map.alive(i)) continue;
+    prior_.points.push_back(map.point(i));
+    prior_.normals.push_back(map.normal(i));
+    prior_.spacings_m.push_back(map.spacing(i));
+  }
+}
+
 PointMap LoopCloser::Render(const PointMapOptions& map_options,
                             const MapExtensionOptions& extension, std::size_t first_node) const {
   PointMap map(map_options);
+  map.Restore(prior_.points, prior_.spacings_m, prior_.normals);
   for (std::size_t i = first_node; i < nodes_.size(); ++i)
     ExtendMap(map, nodes_[i].scan, mounting_.LaserPose(graph_.nodes()[i]), extension);
   return map;

@@ -23,7 +23,8 @@
 namespace scanloc {
 
 struct LoopClosureOptions {
-  bool enabled = false;
+  // On by default (issue 16); off, the session tracks against the whole map it built, as before.
+  bool enabled = true;
   // A node may close a loop with the current scan once the path driven since it was laid exceeds
   // this: younger nodes are the map the session is matching against anyway.
   double min_path_m = 10.0;
@@ -59,13 +60,13 @@ struct LoopClosureOptions {
   // A closure is confirmed when this many consecutive nodes match the old nodes with the same
   // correction (within agree_m and agree_rad of each other); while one is pending, every new node
   // is tried. One scan that fits a look-alike place does not bend the map.
-  int confirm_after = 3;
+  int confirm_after = 5;
   double agree_m = 0.1;
   double agree_rad = 0.03;
   // Floors added to the refinement's standard deviations (it knows only the scan's own noise, not
   // the map's): the edges' information is that of σ ⊕ floor.
-  double sigma_floor_m = 0.02;
-  double sigma_floor_rad = 0.005;
+  double sigma_floor_m = 0.005;
+  double sigma_floor_rad = 0.001;
   PoseGraphOptions graph;
   // After a solve the map is rendered again from the nodes when one of them moved more than this.
   // A confirmed closure predicted to move its node by less (the first-order correction: the
@@ -78,7 +79,7 @@ struct LoopClosureOptions {
   // tracking_min_nodes (a sparse log lays fewer nodes per metre). It is rendered again once it
   // holds twice that. Old places then come back only through closures, which the graph spreads
   // over the loop, instead of the tracker snapping onto their walls.
-  double tracking_path_m = 0.0;
+  double tracking_path_m = 10.0;
   int tracking_min_nodes = 0;
   // Throws std::invalid_argument naming the first option out of its domain.
   void Validate() const;
@@ -131,8 +132,11 @@ class LoopCloser {
   // render_min_shift_m (the map is then worth rendering again).
   bool Finish();
 
+  // A saved map the session started on: every render starts from its live points, restored as
+  // they were (the nodes' scans then carve and extend it as the session did). None by default.
+  void SetPriorMap(const PointMap& map);
   // The map rendered from the nodes from `first_node` on (every node by default) at their current
-  // postures, carving as the session does.
+  // postures, over the prior map, carving as the session does.
   PointMap Render(const PointMapOptions& map_options, const MapExtensionOptions& extension,
                   std::size_t first_node = 0) const;
   // The first of the newest nodes: those that lie within `within_m` of path from the newest one,
@@ -161,6 +165,11 @@ class LoopCloser {
     Pose2D T_node_robot;
   };
 
+  struct PriorPoints {
+    std::vector<Eigen::Vector2d> points, normals;
+    std::vector<double> spacings_m;
+  };
+
   std::vector<std::size_t> OldNodesNear(const Pose2D& T_world_robot, double path_m) const;
   std::optional<ClosureAttempt> Try(const LocalisationOptions& localisation,
                                     const PointMapOptions& map_options);
@@ -178,6 +187,7 @@ class LoopCloser {
   std::vector<Node> nodes_;
   std::vector<std::optional<Anchoring>> anchors_;  // by record index
   std::vector<ClosureAttempt> attempts_;
+  PriorPoints prior_;  // of the saved map the session started on, if any
   std::size_t nodes_since_attempt_ = 0;
   // Closures found but not yet confirmed: their edges and the correction they agree on.
   std::vector<PoseGraphEdge> pending_;
