@@ -92,8 +92,18 @@ void PrintOutcome(const SessionRun& run, const nlohmann::json& summary, const Ru
   if (grid)
     std::cout << "occupancy grid: " << grid->width << " × " << grid->height << " cells of "
               << grid->resolution_m << " m from " << run.grid->scans() << " scans\n";
+  const bool closing = summary.contains("loop_closure");
+  const bool corrected = closing && summary["loop_closure"]["nodes"].get<std::size_t>() > 0;
+  if (closing) {
+    const nlohmann::json& l = summary["loop_closure"];
+    std::cout << "loop closure: " << l["nodes"] << " nodes, " << l["closures_tried"]
+              << " closures tried, " << l["closures_accepted"] << " accepted, "
+              << l["closures_kept"] << " edges kept by the graph, " << l["map_renders"]
+              << " map renders\n";
+  }
   std::cout << "wrote " << folder.directory() << "/{iterations.jsonl,trajectory.tum,map.pcd,"
-            << (grid ? "map.pgm,map.yaml," : "") << "summary.json}\n";
+            << (grid ? "map.pgm,map.yaml," : "") << (closing ? "graph.g2o," : "")
+            << (corrected ? "trajectory-online.tum," : "") << "summary.json}\n";
 }
 
 // One line when the log's own saturation code lowers the range limit below log.max_range_m.
@@ -169,7 +179,7 @@ void SequenceArguments::Register(CLI::App& command, const std::string& point_map
 void RunSequence(const SequenceArguments& a, Config config, const ProcessorMaker& make) {
   // Before anything is read (RunFolder checks again).
   if (!a.resume) RefuseNonEmptyFolder(a.out_dir, a.force);
-  CarmenOptions carmen = config.log;         // --laser-offset and --raw-odometry override it
+  CarmenOptions carmen = config.log;  // --laser-offset and --raw-odometry override it
   if (a.laser_offset_m) carmen.laser_offset_m = a.laser_offset_m;
   if (a.raw_odometry) carmen.repair_reversed_odometry = false;
   RosBagOptions bag = a.bag;
