@@ -20,17 +20,39 @@ struct Step {
   bool forward = true;
 };
 
+// The active edges touching each node, in the order of the graph's edges, in one flat array:
+// node n's are edges[first[n] … first[n + 1]).
+struct Touching {
+  std::vector<std::size_t> first, edges;
+};
+
+Touching ActiveEdgesByNode(const PoseGraph& graph) {
+  const std::vector<PoseGraphEdge>& edges = graph.edges();
+  Touching touching;
+  touching.first.assign(graph.nodes().size() + 1, 0);
+  for (const PoseGraphEdge& edge : edges)
+    if (edge.active) {
+      ++touching.first[edge.from + 1];
+      ++touching.first[edge.to + 1];
+    }
+  for (std::size_t n = 1; n < touching.first.size(); ++n)
+    touching.first[n] += touching.first[n - 1];
+  touching.edges.resize(touching.first.back());
+  std::vector<std::size_t> next(touching.first.begin(), touching.first.end() - 1);
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    if (edges[e].active) {
+      touching.edges[next[edges[e].from]++] = e;
+      touching.edges[next[edges[e].to]++] = e;
+    }
+  return touching;
+}
+
 // The steps of the path of fewest active edges from `from` to `to` (breadth first), in order;
 // nothing when no path joins them.
 std::optional<std::vector<Step>> FewestEdges(const PoseGraph& graph, std::size_t from,
                                              std::size_t to) {
   const std::vector<PoseGraphEdge>& edges = graph.edges();
-  std::vector<std::vector<std::size_t>> touching(graph.nodes().size());
-  for (std::size_t e = 0; e < edges.size(); ++e) {
-    if (!edges[e].active) continue;
-    touching[edges[e].from].push_back(e);
-    touching[edges[e].to].push_back(e);
-  }
+  const Touching touching = ActiveEdgesByNode(graph);
   std::vector<Step> reached_by(graph.nodes().size());
   std::vector<bool> seen(graph.nodes().size(), false);
   std::deque<std::size_t> frontier = {from};
@@ -38,7 +60,8 @@ std::optional<std::vector<Step>> FewestEdges(const PoseGraph& graph, std::size_t
   while (!frontier.empty() && !seen[to]) {
     const std::size_t node = frontier.front();
     frontier.pop_front();
-    for (const std::size_t e : touching[node]) {
+    for (std::size_t k = touching.first[node]; k < touching.first[node + 1]; ++k) {
+      const std::size_t e = touching.edges[k];
       const bool forward = edges[e].from == node;
       const std::size_t next = forward ? edges[e].to : edges[e].from;
       if (seen[next]) continue;
