@@ -76,20 +76,23 @@ double PoseGraph::SquaredError(const PoseGraphEdge& edge) const {
   return error.dot(edge.information * error);
 }
 
-PoseGraphSummary PoseGraph::Optimise(const PoseGraphOptions& options) {
+PoseGraphSummary PoseGraph::Optimise(const PoseGraphOptions& options, std::size_t hold_before) {
   if (options.fixed_node >= nodes_.size() && !nodes_.empty())
     throw std::invalid_argument("fixed pose graph node " + std::to_string(options.fixed_node) +
                                 " out of range (" + std::to_string(nodes_.size()) + " nodes)");
   PoseGraphSummary summary;
   summary.converged = true;
   if (edges_.empty()) return summary;
+  hold_before = std::min(hold_before, nodes_.size() - 1);
   for (;;) {
-    Solve(options, summary);
+    Solve(options, hold_before, summary);
     if (options.closure_rejection_chi2 <= 0.0) break;
     PoseGraphEdge* worst = nullptr;
     double worst_chi2 = options.closure_rejection_chi2;
     for (PoseGraphEdge& edge : edges_) {
-      if (edge.kind != EdgeKind::kClosure || !edge.active) continue;
+      if (edge.kind != EdgeKind::kClosure || !edge.active ||
+          std::max(edge.from, edge.to) < hold_before)
+        continue;
       const double chi2 = SquaredError(edge);
       if (chi2 > worst_chi2) {
         worst = &edge;
@@ -103,7 +106,8 @@ PoseGraphSummary PoseGraph::Optimise(const PoseGraphOptions& options) {
   return summary;
 }
 
-void PoseGraph::Solve(const PoseGraphOptions& options, PoseGraphSummary& summary) {
+void PoseGraph::Solve(const PoseGraphOptions& options, std::size_t hold_before,
+                      PoseGraphSummary& summary) {
   std::vector<double> postures(3 * nodes_.size());
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
     postures[3 * i] = nodes_[i].x_m;
@@ -119,7 +123,7 @@ void PoseGraph::Solve(const PoseGraphOptions& options, PoseGraphSummary& summary
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
   for (const PoseGraphEdge& edge : edges_) {
-    if (!edge.active) continue;
+    if (!edge.active || std::max(edge.from, edge.to) < hold_before) continue;
     Eigen::Matrix3d root;
     SquareRootInformation(edge.information, root);
     auto* cost = new RelativePostureCost(edge.T_from_to, root);
@@ -133,6 +137,9 @@ void PoseGraph::Solve(const PoseGraphOptions& options, PoseGraphSummary& summary
   const std::size_t gauge = options.fixed_node;
   if (problem.HasParameterBlock(&postures[3 * gauge]))
     problem.SetParameterBlockConstant(&postures[3 * gauge]);
+  for (std::size_t i = 0; i < hold_before; ++i)
+    if (problem.HasParameterBlock(&postures[3 * i]))
+      problem.SetParameterBlockConstant(&postures[3 * i]);
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   solver.max_num_iterations = options.max_iterations;

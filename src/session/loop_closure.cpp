@@ -328,7 +328,10 @@ void LoopCloser::Solve(ClosureAttempt& attempt) {
   for (PoseGraphEdge& pending : pending_)
     pending.information /= static_cast<double>(pending_.size());
   attempt.solve_deferred = SolveLater(attempt);
-  for (const PoseGraphEdge& pending : pending_) graph_.AddEdge(pending);
+  for (const PoseGraphEdge& pending : pending_) {
+    graph_.AddEdge(pending);
+    unsolved_from_ = std::min(unsolved_from_, pending.from);
+  }
   pending_.clear();
   if (attempt.solve_deferred) {
     unsolved_ = true;
@@ -337,29 +340,34 @@ void LoopCloser::Solve(ClosureAttempt& attempt) {
     return;
   }
   const std::size_t edge = graph_.edges().size() - 1;
-  const PoseGraphSummary summary = SolveGraph(attempt.largest_shift_m);
+  const PoseGraphSummary summary = SolveGraph(attempt.largest_shift_m, unsolved_from_);
   attempt.solve_iterations = summary.iterations;
   attempt.accepted = graph_.edges()[edge].active;
   attempt.reason = attempt.accepted ? "accepted" : "set aside by the graph";
   attempt.rendered = attempt.largest_shift_m > options_.render_min_shift_m;
 }
 
-// Solves the graph; `largest_shift_m` becomes the largest node displacement it made.
-PoseGraphSummary LoopCloser::SolveGraph(double& largest_shift_m) {
+// Solves the graph, the nodes before `hold_before` held (all free with 0); `largest_shift_m`
+// becomes the largest node displacement it made.
+PoseGraphSummary LoopCloser::SolveGraph(double& largest_shift_m, std::size_t hold_before) {
   unsolved_ = false;
+  unsolved_from_ = kNoNode;
+  partly_solved_ = hold_before > 0;
   local_map_.reset();  // the solve moves the nodes it was rendered from
   const std::vector<Pose2D> before = graph_.nodes();
-  const PoseGraphSummary summary = graph_.Optimise(options_.graph);
+  const PoseGraphSummary summary = graph_.Optimise(options_.graph, hold_before);
   largest_shift_m = 0.0;
   for (std::size_t i = 0; i < before.size(); ++i)
     largest_shift_m = std::max(largest_shift_m, Distance(before[i], graph_.nodes()[i]));
   return summary;
 }
 
+// The final solve, of the whole graph, when closures joined it unsolved or the solves since the
+// last whole one held the older nodes.
 bool LoopCloser::Finish() {
-  if (!unsolved_) return false;
+  if (!unsolved_ && !partly_solved_) return false;
   double largest_shift_m = 0.0;
-  SolveGraph(largest_shift_m);
+  SolveGraph(largest_shift_m, 0);
   return largest_shift_m > options_.render_min_shift_m;
 }
 

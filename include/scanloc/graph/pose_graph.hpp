@@ -67,8 +67,10 @@ class PoseGraph {
 
   // Solves the graph from the current node postures; the nodes hold the result and rejected
   // closures are marked inactive. A graph without edges returns at once. Throws
-  // std::invalid_argument for a fixed node out of range.
-  PoseGraphSummary Optimise(const PoseGraphOptions& options = {});
+  // std::invalid_argument for a fixed node out of range. With hold_before > 0 the nodes before it
+  // are held where they are (they are the gauge), and only the edges that touch a later node are
+  // solved and tested: the part of the graph a new closure from node hold_before on moves most.
+  PoseGraphSummary Optimise(const PoseGraphOptions& options = {}, std::size_t hold_before = 0);
 
   // The squared whitened error of `edge` at the current node postures: rᵀ Ω r with r the
   // difference between the measured and the current relative posture. Distributed as χ² with 3
@@ -80,7 +82,7 @@ class PoseGraph {
   std::vector<PoseGraphEdge> edges_;
 
   // One Ceres solve over the active edges.
-  void Solve(const PoseGraphOptions& options, PoseGraphSummary& summary);
+  void Solve(const PoseGraphOptions& options, std::size_t hold_before, PoseGraphSummary& summary);
 };
 
 }  // namespace scanloc

@@ -179,7 +179,7 @@ class LoopCloser {
   void Confirm(const Eigen::Matrix3d& covariance, ClosureAttempt& attempt);
   bool SolveLater(ClosureAttempt& attempt) const;
   void Solve(ClosureAttempt& attempt);
-  PoseGraphSummary SolveGraph(double& largest_shift_m);
+  PoseGraphSummary SolveGraph(double& largest_shift_m, std::size_t hold_before);
 
   LoopClosureOptions options_;
   LaserMounting mounting_;
@@ -192,7 +192,12 @@ class LoopCloser {
   // Closures found but not yet confirmed: their edges and the correction they agree on.
   std::vector<PoseGraphEdge> pending_;
   Pose2D pending_correction_;
-  bool unsolved_ = false;         // closures joined the graph since its last solve
+  bool unsolved_ = false;  // closures joined the graph since its last solve
+  // The oldest node of the closures that joined the graph since its last solve: a solve holds
+  // the nodes before it (the loop they close is what moves), and Finish solves the whole graph.
+  static constexpr std::size_t kNoNode = static_cast<std::size_t>(-1);
+  std::size_t unsolved_from_ = kNoNode;
+  bool partly_solved_ = false;    // a solve held nodes since the last whole one
   LikelihoodField search_field_;  // the storage of every attempt's search field
   // The map of the latest attempt's old nodes, kept until a solve moves nodes: the next attempt
   // matched on the same stretch of old nodes, with the same options, uses it again.
