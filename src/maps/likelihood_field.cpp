@@ -94,7 +94,10 @@ void LikelihoodField::Splat(const Eigen::Vector2d& point, double sigma_m) {
     if (row < 0.5) continue;
     std::uint8_t* cells = field.data() + static_cast<std::size_t>(iy) * width_;
     for (int ix = x0; ix <= x1; ++ix) {
-      const auto value = static_cast<std::uint8_t>(std::lround(row * columns_[ix - x0]));
+      // Rounded to the nearest quantum, halves up, as lround for these values in [0, 255]
+      // (below 0.5 the sum v + 0.5 could round up to 1, so those are 0 outright).
+      const double v = row * columns_[ix - x0];
+      const auto value = static_cast<std::uint8_t>(v < 0.5 ? 0 : static_cast<int>(v + 0.5));
       cells[ix] = std::max(cells[ix], value);
     }
   }
