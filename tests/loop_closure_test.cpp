@@ -121,7 +121,10 @@ TEST(LoopCloser, ComingBackToTheStartCorrectsTheDriftOfTheNodes) {
 
 TEST(LoopCloser, ClosuresThatWouldMoveTheMapLessThanTheRenderShiftJoinUnsolvedUntilFinish) {
   const Lap lap = DriveRing(testing::RingBuilding());
-  const LoopClosureOptions options = Enabled();
+  LoopClosureOptions options = Enabled();
+  // Tried at every fifth node, turns in place included: closures close together, so that each
+  // has little to correct.
+  options.attempt_every_m = 0.0;
   LoopCloser closer(options, LaserMounting{});
   std::size_t accepted = 0;
   // Laid at the true postures: a closure has only the matcher's millimetres to correct.
@@ -152,6 +155,51 @@ TEST(LoopCloser, ClosuresThatWouldMoveTheMapLessThanTheRenderShiftJoinUnsolvedUn
   EXPECT_GT(moved_m, 0.0);
   EXPECT_LT(moved_m, options.render_min_shift_m);
   EXPECT_FALSE(closer.Finish());  // nothing left unsolved
+}
+
+// A closure is tried anew only once attempt_every_nodes nodes were laid and attempt_every_m of
+// path driven since the last attempt (a turn in place lays nodes but drives no path); the
+// confirmations of a pending closure follow at every node.
+TEST(LoopCloser, AttemptsStartAfterTheNodesAndThePathSinceTheLastOne) {
+  const Lap lap = DriveRing(testing::RingBuilding());
+  std::vector<double> path_m = {0.0};
+  for (std::size_t i = 1; i < lap.truth.size(); ++i)
+    path_m.push_back(path_m.back() +
+                     (lap.truth[i].Translation() - lap.truth[i - 1].Translation()).norm());
+  auto attempted_nodes = [&lap](const LoopClosureOptions& options) {
+    LoopCloser closer(options, LaserMounting{});
+    std::vector<std::pair<std::size_t, bool>> tried;  // node, whether it followed a pending one
+    bool pending = false;
+    for (std::size_t i = 0; i < lap.truth.size(); ++i) {
+      closer.AddNode(i, lap.scans[i], lap.truth[i], std::nullopt);
+      const auto attempt = closer.MaybeClose(LocalisationOptions{}, PointMapOptions{});
+      if (!attempt) continue;
+      tried.emplace_back(attempt->node, pending);
+      pending = attempt->reason.rfind("pending", 0) == 0;
+    }
+    return tried;
+  };
+  LoopClosureOptions options = Enabled();
+  options.attempt_every_nodes = 2;
+  options.attempt_every_m = 2.0;
+  const auto tried = attempted_nodes(options);
+  std::size_t new_ones = 0;
+  for (std::size_t k = 1; k < tried.size(); ++k) {
+    if (tried[k].second) {
+      EXPECT_EQ(tried[k].first, tried[k - 1].first + 1);  // a confirmation: the next node
+      continue;
+    }
+    ++new_ones;
+    EXPECT_GE(tried[k].first - tried[k - 1].first, 2u) << tried[k].first;
+    EXPECT_GE(path_m[tried[k].first] - path_m[tried[k - 1].first], 2.0 - 1e-9) << tried[k].first;
+  }
+  EXPECT_GE(new_ones, 5u);
+  // By nodes alone (every second one, 0.8 m apart on the straights) more closures are tried.
+  options.attempt_every_m = 0.0;
+  const auto by_nodes = attempted_nodes(options);
+  std::printf("attempts: %zu with 2 nodes and 2 m between them, %zu with 2 nodes\n", tried.size(),
+              by_nodes.size());
+  EXPECT_GT(by_nodes.size(), tried.size() + 5);
 }
 
 // The scans of a confirmed batch share their local map's error: each closure edge carries at most

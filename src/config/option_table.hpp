@@ -253,7 +253,9 @@ void VisitLoopClosure(C& c, V& v) {
   v("loop_closure.max_local_nodes", l.max_local_nodes, Bounds{1, 1e6},
     "... the nearest of them and the nodes laid just before and after it, at most this many");
   v("loop_closure.attempt_every_nodes", l.attempt_every_nodes, Bounds{1, 1e6},
-    "a closure is tried at every this many new nodes");
+    "a closure is tried once this many new nodes were laid since the last attempt ...");
+  v("loop_closure.attempt_every_m", l.attempt_every_m, Bounds{0, 1e6},
+    "... and this much path driven since it, m");
   v("loop_closure.min_half_width_m", l.min_half_width_m, Bounds{0, 1e3},
     "closure search: the window's half width at least, m ...");
   v("loop_closure.translation_error_per_m", l.translation_error_per_m, Bounds{0, 10},

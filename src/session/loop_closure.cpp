@@ -74,7 +74,8 @@ void LoopClosureOptions::Validate() const {
   require(min_path_m >= 0.0, "min_path_m must be >= 0");
   require(local_map_radius_m > 0.0, "local_map_radius_m must be positive");
   require(min_local_nodes >= 1, "min_local_nodes must be >= 1");
-  require(attempt_every_nodes >= 1, "attempt_every_nodes must be >= 1");
+  require(attempt_every_nodes >= 1 && attempt_every_m >= 0.0,
+          "attempt_every_nodes must be >= 1 and attempt_every_m >= 0");
   require(min_half_width_m >= 0.0 && max_half_width_m >= min_half_width_m,
           "0 <= min_half_width_m <= max_half_width_m");
   require(translation_error_per_m >= 0.0 && heading_error_per_m >= 0.0,
@@ -158,10 +159,14 @@ std::vector<std::size_t> LoopCloser::OldNodesNear(const Pose2D& T_world_robot,
 
 std::optional<ClosureAttempt> LoopCloser::MaybeClose(const LocalisationOptions& localisation,
                                                      const PointMapOptions& map_options) {
-  const bool due = !pending_.empty() ||
-                   nodes_since_attempt_ >= static_cast<std::size_t>(options_.attempt_every_nodes);
-  if (!options_.enabled || nodes_.empty() || !due) return std::nullopt;
+  if (!options_.enabled || nodes_.empty()) return std::nullopt;
+  const bool due =
+      !pending_.empty() ||
+      (nodes_since_attempt_ >= static_cast<std::size_t>(options_.attempt_every_nodes) &&
+       nodes_.back().path_m - path_at_attempt_m_ >= options_.attempt_every_m);
+  if (!due) return std::nullopt;
   nodes_since_attempt_ = 0;
+  path_at_attempt_m_ = nodes_.back().path_m;
   const auto start = std::chrono::steady_clock::now();
   std::optional<ClosureAttempt> attempt = Try(localisation, map_options);
   if (!attempt) {

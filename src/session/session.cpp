@@ -73,7 +73,7 @@ Session::Session(const SessionConfig& config, LaserMounting mounting, LineMap li
       drift_(options_.recovery),
       loop_(options_.loop_closure, mounting_) {
   options_.Validate();
-  loop_.SetPriorMap(point_map_);
+  if (options_.loop_closure.enabled) loop_.SetPriorMap(point_map_);
   localisation_.validation.Validate();
   localisation_.scoring.test.Validate();
   localisation_.scoring.distance.Validate();

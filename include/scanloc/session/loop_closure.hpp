@@ -35,8 +35,11 @@ struct LoopClosureOptions {
   double local_map_radius_m = 5.0;
   int min_local_nodes = 3;
   int max_local_nodes = 30;
-  // A closure is tried at every this many new nodes (the cost stays bounded per metre driven).
+  // A closure is tried once this many new nodes were laid and this much path driven since the
+  // last attempt: the cost stays bounded per node and per metre driven, however densely a log
+  // lays its nodes (every 0.1 m on the Kümmerle logs, every 0.9 m on the Radish logs).
   int attempt_every_nodes = 5;
+  double attempt_every_m = 2.0;
   // The window searched around the current posture: min_half_width_m + translation_error_per_m ·
   // the path driven since the nearest old node, at most max_half_width_m; the same for heading.
   // With window_sigmas > 0 it follows the graph instead: window_sigmas standard deviations of the
@@ -189,6 +192,7 @@ class LoopCloser {
   std::vector<ClosureAttempt> attempts_;
   PriorPoints prior_;  // of the saved map the session started on, if any
   std::size_t nodes_since_attempt_ = 0;
+  double path_at_attempt_m_ = 0.0;  // the newest node's path when the last attempt was due
   // Closures found but not yet confirmed: their edges and the correction they agree on.
   std::vector<PoseGraphEdge> pending_;
   Pose2D pending_correction_;
