@@ -202,42 +202,6 @@ TEST(LoopCloser, AttemptsStartAfterTheNodesAndThePathSinceTheLastOne) {
   EXPECT_GT(by_nodes.size(), tried.size() + 5);
 }
 
-// A corridor driven out and back with a node every 0.1 m: coming back, the map a closure is
-// matched on spans the whole first pass within the radius, thinned to max_local_nodes, the nearest
-// node first; with room for every node, the whole stretch, node by node.
-TEST(LoopCloser, TheOldNodesNearSpanTheirStretchWithinTheRadiusThinnedToTheMaximum) {
-  LoopClosureOptions options = Enabled();
-  LoopCloser closer(options, LaserMounting{});
-  for (int i = 0; i <= 300; ++i)  // out along y = 0, then back along y = 0.5
-    closer.AddNode(static_cast<std::size_t>(i), LaserScan{}, Pose2D(0.1 * i, 0.0, 0.0),
-                   std::nullopt);
-  const Pose2D back(15.0, 0.5, M_PI);
-  const double path_m = closer.path_m() + 15.5;
-  auto span = [](const std::vector<std::size_t>& nodes) {
-    const auto [low, high] = std::minmax_element(nodes.begin(), nodes.end());
-    return 0.1 * static_cast<double>(*high - *low);
-  };
-  const std::vector<std::size_t> thinned = closer.OldNodesNear(back, path_m);
-  ASSERT_FALSE(thinned.empty());
-  EXPECT_EQ(thinned.front(), 150u);
-  // The radius (5 m, 0.5 m off the pass) holds x within ±4.97 m: nodes 101–199, 99 of them;
-  // at most 30 means every 4th (⌈99 / 30⌉) from the nearest, 25 nodes.
-  EXPECT_EQ(thinned.size(), 25u);
-  EXPECT_NEAR(span(thinned), 9.6, 1e-9);
-  for (const std::size_t node : thinned) {
-    EXPECT_EQ((node > 150 ? node - 150 : 150 - node) % 4, 0u) << node;
-    EXPECT_LE(std::hypot(0.1 * node - 15.0, 0.5), options.local_map_radius_m) << node;
-  }
-  options.max_local_nodes = 1000;
-  LoopCloser roomy(options, LaserMounting{});
-  for (int i = 0; i <= 300; ++i)
-    roomy.AddNode(static_cast<std::size_t>(i), LaserScan{}, Pose2D(0.1 * i, 0.0, 0.0),
-                  std::nullopt);
-  const std::vector<std::size_t> all = roomy.OldNodesNear(back, path_m);
-  EXPECT_EQ(all.size(), 99u);
-  EXPECT_NEAR(span(all), 9.8, 1e-9);
-}
-
 // The scans of a confirmed batch share their local map's error: each closure edge carries at most
 // 1/confirm_after of the information its floors allow (the floors bound a closure's covariance
 // from below, the refinement's adds to it), so that the batch weighs as one closure.

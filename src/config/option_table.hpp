@@ -251,7 +251,7 @@ void VisitLoopClosure(C& c, V& v) {
   v("loop_closure.min_local_nodes", l.min_local_nodes, Bounds{1, 1e6},
     "old nodes needed near before a closure is tried");
   v("loop_closure.max_local_nodes", l.max_local_nodes, Bounds{1, 1e6},
-    "... the nearest of them and its stretch within the radius, thinned to at most this many");
+    "... the nearest of them and the nodes laid just before and after it, at most this many");
   v("loop_closure.attempt_every_nodes", l.attempt_every_nodes, Bounds{1, 1e6},
     "a closure is tried once this many new nodes were laid since the last attempt ...");
   v("loop_closure.attempt_every_m", l.attempt_every_m, Bounds{0, 1e6},

@@ -127,13 +127,10 @@ void LoopCloser::Anchor(std::size_t iteration, const Pose2D& T_world_robot) {
   anchors_[iteration] = Anchoring{node, Between(graph_.nodes()[node], T_world_robot)};
 }
 
-// The old nodes the scan is matched on: the nearest node old enough, and the nodes laid before
-// and after it while they stay old enough and within the radius. One stretch of one pass: its
-// nodes agree with each other, where nodes of several passes would not until their loops are
-// closed. A stretch of more than max_local_nodes is thinned to every k-th node from the nearest
-// (a bounded cost, and the walls of the whole stretch however densely the log lays its nodes).
-// The nearest comes first, then the others outwards, alternately before and after it. Empty when
-// fewer than min_local_nodes.
+// The old nodes the scan is matched on: the nearest node old enough, and the nodes laid just
+// before and after it (at most max_local_nodes in all, all old enough and within the radius). One
+// stretch of one pass: its nodes agree with each other, where nodes of several passes would not
+// until their loops are closed. Empty when fewer than min_local_nodes.
 std::vector<std::size_t> LoopCloser::OldNodesNear(const Pose2D& T_world_robot,
                                                   double path_m) const {
   auto usable = [&](std::size_t i) {
@@ -147,15 +144,11 @@ std::vector<std::size_t> LoopCloser::OldNodesNear(const Pose2D& T_world_robot,
                                       Distance(graph_.nodes()[*nearest], T_world_robot)))
       nearest = i;
   if (!nearest) return {};
-  std::size_t first = *nearest, last = *nearest;
-  while (first > 0 && usable(first - 1)) --first;
-  while (last + 1 < nodes_.size() && usable(last + 1)) ++last;
-  const std::size_t wanted = static_cast<std::size_t>(options_.max_local_nodes);
-  const std::size_t stride = (last - first + wanted) / wanted;  // ⌈count / wanted⌉
   std::vector<std::size_t> stretch = {*nearest};
-  for (std::size_t step = stride; stretch.size() < wanted; step += stride) {
-    const bool before = step <= *nearest - first;
-    const bool after = step <= last - *nearest;
+  const std::size_t wanted = static_cast<std::size_t>(options_.max_local_nodes);
+  for (std::size_t step = 1; stretch.size() < wanted; ++step) {
+    const bool before = step <= *nearest && usable(*nearest - step);
+    const bool after = *nearest + step < nodes_.size() && usable(*nearest + step);
     if (!before && !after) break;
     if (before) stretch.push_back(*nearest - step);
     if (after && stretch.size() < wanted) stretch.push_back(*nearest + step);

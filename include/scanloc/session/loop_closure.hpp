@@ -29,9 +29,9 @@ struct LoopClosureOptions {
   // this: younger nodes are the map the session is matching against anyway.
   double min_path_m = 10.0;
   // The map a closure is matched on: the nearest old node within local_map_radius_m of the
-  // current posture and the nodes laid before and after it while they stay within the radius, one
-  // stretch of one pass; a longer stretch than max_local_nodes is thinned to every k-th node (the
-  // walls of the whole stretch at a bounded cost); fewer than min_local_nodes try nothing.
+  // current posture and the nodes laid just before and after it, one stretch of one pass, at most
+  // max_local_nodes (enough walls to pin a posture, a bounded cost), each within the radius too;
+  // fewer than min_local_nodes try nothing.
   double local_map_radius_m = 5.0;
   int min_local_nodes = 3;
   int max_local_nodes = 30;
@@ -147,9 +147,6 @@ class LoopCloser {
   std::size_t FirstNewestNode(double within_m, std::size_t count) const;
   // The path driven from the first node to the newest one (0 without nodes), m.
   double path_m() const { return nodes_.empty() ? 0.0 : nodes_.back().path_m; }
-  // The old nodes a closure at T_world_robot, path_m into the session, is matched on: the nearest
-  // one first (the closure's edge starts there), then its stretch outwards (see the options).
-  std::vector<std::size_t> OldNodesNear(const Pose2D& T_world_robot, double path_m) const;
   // The newest node's posture (after a solve it moves).
   std::optional<Pose2D> NewestNode() const;
   // Each anchored record's posture following its node, by record index (none before the first
@@ -176,6 +173,7 @@ class LoopCloser {
     std::vector<double> spacings_m;
   };
 
+  std::vector<std::size_t> OldNodesNear(const Pose2D& T_world_robot, double path_m) const;
   std::optional<ClosureAttempt> Try(const LocalisationOptions& localisation,
                                     const PointMapOptions& map_options);
   const PointMap& LocalMap(const std::vector<std::size_t>& old, const PointMapOptions& map_options);
