@@ -63,11 +63,24 @@ TEST_F(SessionOnRadishLog, OrebroWithItsOwnNoReturnCodeStaysWithin40CentimetresO
 // The log has PARAM lines of five and six fields. Measured 2026-11-25 without loop closure:
 // 0.333 m mean (0.331–0.334 under perturbations); 2026-11-29 with loop closure on by default:
 // 0.458 m (0.458–0.526), the session lost once it tracks only its newest 10 m of nodes
-// (docs/BENCHMARKS.md, "Loop closure on by default").
+// (docs/BENCHMARKS.md, "Loop closure on by default"); with the correction gate (2026-11-29,
+// night): 0.232 m (0.223–0.232).
 TEST_F(SessionOnRadishLog, FhwWithBothParamFormsStaysWithin55CentimetresOnAverage) {
   SKIP_WITHOUT_LOGS();
   EXPECT_LT(Run("fhw", "noisy").translation_m.mean, 0.55);
   EXPECT_TRUE(run_.exited && run_.exit_code == 0) << run_;
+}
+
+// Given perfect odometry, the session confirmed a scan turned 0.14 rad off its true heading on a
+// third of its beams, laid it on the map and confirmed a third of the log after it: 1.276 m mean,
+// 27.7 m max. The correction gate refuses such a refinement (docs/BENCHMARKS.md, "A correction
+// gate"): 0.202 m mean (0.200–0.298 under perturbations of the defaults), 465 of 487 scans
+// confirmed.
+TEST_F(SessionOnRadishLog, FhwWithPerfectOdometryStaysWithin40CentimetresOnAverage) {
+  SKIP_WITHOUT_LOGS();
+  EXPECT_LT(Run("fhw", "exact").translation_m.mean, 0.4);
+  EXPECT_TRUE(run_.exited && run_.exit_code == 0) << run_;
+  EXPECT_GT(Summary()["validated"].get<int>(), 400);
 }
 
 // Edmonton and acapulco were lost for good: given perfect odometry the session ended 13 m and 24 m

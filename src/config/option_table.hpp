@@ -172,6 +172,20 @@ void VisitSession(C& c, V& v) {
     "laser signature: confirmed scans before its bound differs from validation's E_max");
   v("session.signature_spread_factor", s.signature.spread_factor, Bounds{0.1, 100},
     "laser signature: E_max = median EV + this · robust σ of the remembered EVs");
+  v("session.correction_gate_factor", s.correction_gate.factor, Bounds{0, 1e3},
+    "a refinement moving the posture further from the odometry's prediction than this many times "
+    "the recent confirmed scans' median correction (×√(n+1) after n unconfirmed) is refused; 0: "
+    "off");
+  v("session.correction_gate_overlap_fraction", s.correction_gate.overlap_fraction, Bounds{0, 1},
+    "correction gate: only a refinement matching fewer beams than this fraction of the recent "
+    "confirmed scans' median match ratio is refused");
+  v("session.correction_gate_agree_factor", s.correction_gate.agree_factor, Bounds{0, 1e3},
+    "correction gate: a refused posture stands when the next localised scan lands within this "
+    "many median corrections of it");
+  v("session.correction_gate_window", s.correction_gate.window, Bounds{0, 100000},
+    "correction gate: the confirmed scans it remembers");
+  v("session.correction_gate_min_samples", s.correction_gate.min_samples, Bounds{1, 100000},
+    "correction gate: confirmed scans before it refuses anything");
   v("session.free_space_margin_m", s.extension.free_space_margin_m, Bounds{0, 100},
     "carving: a point more than margin + margin_per_m·r in front of a return is seen through, m; "
     "0: no carving");

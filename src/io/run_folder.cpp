@@ -169,8 +169,13 @@ nlohmann::json ToJson(const IterationRecord& r) {
     out["problems"] = localisation->problems;
     out[keys::kMaxExpectValueM] = r.max_expect_value_m;
     out[keys::kSignatureExpectValueM] = r.signature_expect_value_m;
+    if (r.correction_bound)
+      out[keys::kCorrectionBound] = {r.correction_bound->translation_m,
+                                     r.correction_bound->rotation_rad};
   }
   if (kept) {
+    // The posture the correction gate refused: the kept refinement, the scan took the prediction.
+    if (r.beyond_odometry) out[keys::kBeyondOdometry] = ToJson(kept->T_world_robot);
     out["refinement"] = ToJson(*kept->refinement);
     out["refined_candidates"] = RefinedCandidatesJson(*localisation);
     const Pose2D correction = Between(r.prediction, r.T_world_robot);

@@ -1,7 +1,7 @@
 #include "scanloc/io/run_resume.hpp"
 
-#include <filesystem>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -119,8 +119,9 @@ RecordedIteration RecordedFromJson(const json& record) {
     r.T_world_robot = PoseFrom(record.at(keys::kTWorldRobot));
     r.validated = record.at(keys::kValidated).get<bool>();
     r.verdict = VerdictFrom(record.at(keys::kReason).get<std::string>());
-    if (r.localised)
-      r.signature_expect_value_m = Real(record, keys::kSignatureExpectValueM);
+    if (r.localised) r.signature_expect_value_m = Real(record, keys::kSignatureExpectValueM);
+    if (record.contains(keys::kBeyondOdometry))
+      r.refused = PoseFrom(record.at(keys::kBeyondOdometry));
     r.lost = FlagOr(record, keys::kLost, false);
     r.recovered = FlagOr(record, keys::kRecovered, false);
     r.inserted = record.at(keys::kInserted).get<bool>();

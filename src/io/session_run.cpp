@@ -94,6 +94,7 @@ void SessionCounts::Add(const IterationRecord& record) {
   inserted += record.inserted;
   searches += record.search.has_value();
   recoveries += record.recovered;
+  refused_corrections += record.beyond_odometry;
   lost_stretches += record.lost && !was_lost;
   was_lost = record.lost;
   localisation = localisation || !record.state.empty();
@@ -224,6 +225,7 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
       {"lost_stretches", c.lost_stretches},
       {"wide_searches", c.searches},
       {"recoveries", c.recoveries},
+      {"refused_corrections", c.refused_corrections},
       {"lost_at_end", c.was_lost},
       {"map_points", run.session ? run.session->point_map().live_size() : 0},
       {"wall_time_s", wall_s},

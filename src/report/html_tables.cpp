@@ -108,6 +108,7 @@ std::string SummaryTable(const json& summary, const std::vector<IterationRow>& r
                                           {"lost_stretches", "times lost"},
                                           {"wide_searches", "wide searches"},
                                           {"recoveries", "recoveries"},
+                                          {"refused_corrections", "corrections refused"},
                                           {"lost_at_end", "lost at the end"},
                                           {"first_confirmed_scan", "first confirmed scan"},
                                           {"seconds_to_confirm", "seconds to confirm"},

@@ -55,6 +55,7 @@ void SessionOptions::Validate() const {
           "insert thresholds must be >= 0");
   signature.Validate();
   motion_prior.Validate();
+  correction_gate.Validate();
   recovery.Validate();
   loop_closure.Validate();
   require(std::isfinite(initial_pose.x_m) && std::isfinite(initial_pose.y_m) &&
@@ -71,6 +72,7 @@ Session::Session(const SessionConfig& config, LaserMounting mounting, LineMap li
       point_map_(std::move(point_map)),
       signature_(options_.signature),
       drift_(options_.recovery),
+      gate_(options_.correction_gate),
       loop_(options_.loop_closure, mounting_) {
   options_.Validate();
   if (options_.loop_closure.enabled) loop_.SetPriorMap(point_map_);
@@ -94,8 +96,10 @@ IterationRecord Session::Step(const Iteration& iteration, const RecordedIteratio
   const auto start = std::chrono::steady_clock::now();
   IterationRecord record = BeginRecord(iteration, count_);
   record.prediction = Predict(iteration);
-  if (iteration.odometry && last_odometry_)
+  if (iteration.odometry && last_odometry_) {
     drift_.Moved(Between(*last_odometry_, *iteration.odometry));
+    gate_.Moved(Between(*last_odometry_, *iteration.odometry));
+  }
   if (View().empty() && iteration.external_candidates.empty()) {
     // Nothing to localise against: the posture is the prediction (the origin at first, §3.2.2).
     record.first = count_ == 0;
@@ -208,8 +212,10 @@ LocalisationResult Session::LocaliseCandidates(const Pose2D& prediction, const I
 }
 
 // Localise from the candidates (with the wide search's when lost), rule 2's E_max from the laser
-// signature when so configured. A confirmed refinement is the posture and teaches the signature;
-// an unconfirmed one is flagged, and the posture may stay the prediction (TakesPrediction).
+// signature when so configured. A confirmed refinement is the posture and teaches the signature
+// and the correction gate; one the gate refuses (far beyond the odometry's learned error, on
+// little overlap) is neither confirmed nor kept; an unconfirmed one is flagged, and the posture
+// may stay the prediction (TakesPrediction).
 void Session::LocaliseInto(IterationRecord& record, const Iteration& iteration) {
   LocalisationOptions options = BoundedOptions(record);
   AddMotionPrior(options, record.prediction, iteration);
@@ -220,8 +226,18 @@ void Session::LocaliseInto(IterationRecord& record, const Iteration& iteration) 
   const RankedCandidate& kept = *record.Kept();
   record.verdict = kept.verdict;
   record.validated = record.localisation->validated();
+  // The wide search's window, not the gate, bounds a lost session's correction.
+  if (!was_lost) {
+    record.correction_bound = gate_.Bound(drift_.unconfirmed());
+    record.beyond_odometry = gate_.Refuses(record.prediction, kept.T_world_robot,
+                                           kept.test.MatchRatio(), drift_.unconfirmed());
+    if (record.beyond_odometry) record.validated = false;
+  }
   record.T_world_robot = TakesPrediction(record, kept) ? record.prediction : kept.T_world_robot;
-  if (record.validated) signature_.Add(kept.test);
+  if (record.validated) {
+    signature_.Add(kept.test);
+    gate_.Add(Between(record.prediction, record.T_world_robot), kept.test.MatchRatio());
+  }
   AfterLocalised(record, iteration, was_lost);
 }
 
@@ -233,6 +249,8 @@ void Session::RestoreLocalised(IterationRecord& record, const Iteration& iterati
     throw ReplayMismatch("the replay localises the scan, the record says it was not localised");
   BoundedOptions(record);
   const bool was_lost = drift_.lost();
+  record.beyond_odometry = recorded.refused.has_value();
+  if (!was_lost) gate_.Restore(recorded.refused);
   if (was_lost) {
     record.search_window = drift_.Window(mounting_.LaserPose(record.prediction));
     record.search.emplace();
@@ -245,6 +263,7 @@ void Session::RestoreLocalised(IterationRecord& record, const Iteration& iterati
     if (!recorded.kept_test)
       throw ReplayMismatch("the record is confirmed but holds no Likelihood Test of its posture");
     signature_.Add(*recorded.kept_test);
+    gate_.Add(Between(record.prediction, record.T_world_robot), recorded.kept_test->MatchRatio());
   }
   AfterLocalised(record, iteration, was_lost);
 }
@@ -254,6 +273,7 @@ void Session::RestoreLocalised(IterationRecord& record, const Iteration& iterati
 // the data disproves the prediction.
 bool Session::TakesPrediction(const IterationRecord& record, const RankedCandidate& kept) const {
   if (record.validated) return false;
+  if (record.beyond_odometry) return true;
   if (options_.low_overlap_takes_prediction &&
       (kept.verdict == Verdict::kLowMatchRatio || kept.verdict == Verdict::kNoValidPairs))
     return true;

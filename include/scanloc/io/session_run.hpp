@@ -34,6 +34,8 @@ struct SessionCounts {
   std::size_t iterations = 0, localised = 0, skipped = 0, validated = 0, flagged = 0, inserted = 0;
   // Stretches of scans the session was lost in, wide searches run, confirmations that ended one.
   std::size_t lost_stretches = 0, searches = 0, recoveries = 0;
+  // Refinements the correction gate refused (the scan kept the odometry's prediction).
+  std::size_t refused_corrections = 0;
   bool was_lost = false;  // lost after the last scan
   // Localisation on a saved map: the first scan whose posture was confirmed (its index and time),
   // the scans with several hypotheses, the most held at once, the scans without a posture.

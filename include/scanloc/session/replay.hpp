@@ -33,6 +33,8 @@ struct RecordedIteration {
   std::optional<LikelihoodTestResult> kept_test;
   std::optional<Eigen::Matrix3d> kept_covariance;
   double signature_expect_value_m = 0.0;
+  // The refinement the correction gate refused (correction_gate.hpp), when it refused one.
+  std::optional<Pose2D> refused;
   bool searched = false, lost = false, recovered = false;
   bool inserted = false;
   std::size_t carved = 0, map_points = 0;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "scanloc/maps/point_map.hpp"
+#include "scanloc/session/correction_gate.hpp"
 #include "scanloc/session/iteration.hpp"
 #include "scanloc/session/localisation.hpp"
 #include "scanloc/session/loop_closure.hpp"
@@ -61,6 +62,10 @@ struct IterationRecord {
   bool validated = false;
   double max_expect_value_m = 0.0;        // rule 2's E_max in force
   double signature_expect_value_m = 0.0;  // the laser signature's bound (in force or not)
+  // The correction gate's bound in force (none until learned), and whether the kept refinement
+  // went beyond it (then it was neither confirmed nor kept: the scan took the prediction).
+  std::optional<CorrectionBound> correction_bound;
+  bool beyond_odometry = false;
   // The wide search, when the session was lost before this scan: its window and what it found.
   std::optional<SearchWindow> search_window;
   std::optional<WideSearchResult> search;

@@ -13,6 +13,7 @@
 #include "scanloc/likelihood/laser_signature.hpp"
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/maps/point_map.hpp"
+#include "scanloc/session/correction_gate.hpp"
 #include "scanloc/session/iteration.hpp"
 #include "scanloc/session/localisation.hpp"
 #include "scanloc/session/loop_closure.hpp"
@@ -88,6 +89,9 @@ struct SessionOptions {
   // Off by default: it makes the sparse logs' scan-to-scan steps more accurate but does not keep
   // them from being lost (docs/BENCHMARKS.md, "A motion prior on the refinement").
   MotionPriorOptions motion_prior;
+  // Refinements that move the posture much further from the prediction than the recent confirmed
+  // scans' refinements did are refused (correction_gate.hpp).
+  CorrectionGateOptions correction_gate;
   // When the session counts itself lost, and the wide search it then adds.
   RecoveryOptions recovery;
   // Nodes, closures and the pose graph whose corrections move the map.
@@ -176,6 +180,7 @@ class Session : public ScanProcessor {
   LaidScanSample laid_;  // confirmed scans laid on the map, for the map's own signature
   std::optional<MapSignature> map_signature_;
   DriftTracker drift_;
+  CorrectionGate gate_;
   LoopCloser loop_;
   std::size_t count_ = 0;
   Pose2D last_pose_;  // T_world_robot of the previous iteration

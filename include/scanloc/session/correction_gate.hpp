@@ -1,0 +1,76 @@
+#pragma once
+// The odometry's own error, learned from the confirmed scans. Each confirmed scan's refinement
+// moved its posture away from the odometry's prediction by a correction: the odometry's error over
+// the step plus the matcher's. A refinement that moves the posture many times further than the
+// recent confirmed scans' corrections did is more likely a wrong fit (a wall taken for its
+// neighbour, a scan turned onto a corridor's other side) than the odometry slipping: given
+// perfect odometry, a sparse log's session confirmed a scan turned 0.14 rad off (the recent
+// median 0.004 rad) and lost its map. Such a refinement is neither confirmed nor kept: the scan
+// keeps the prediction (never-lost issue: never worse than the odometry the data cannot
+// disprove). The bound follows from the data, so it is tight for good odometry and loose for bad.
+
+#include <cstddef>
+#include <deque>
+#include <optional>
+
+#include "scanloc/geometry/pose2d.hpp"
+
+namespace scanloc {
+
+struct CorrectionGateOptions {
+  // A refinement is refused when its correction exceeds factor · the median correction of the
+  // remembered confirmed scans, in position or in heading, times √(n + 1) after n unconfirmed
+  // scans in a row (the odometry's error grows like a random walk). 0 turns the gate off.
+  double factor = 8.0;
+  // Confirmed scans remembered (the most recent), and needed before the gate closes.
+  int window = 500;
+  int min_samples = 10;
+  // A refused posture is confirmed after all when the next localised scan's refinement lands
+  // within agree_factor · the median corrections of it (carried by the odometry): two scans that
+  // agree on where the odometry went wrong are the odometry slipping, not a wrong fit.
+  double agree_factor = 3.0;
+  // Only a refinement whose match ratio (rule 1) is below this fraction of the remembered confirmed
+  // scans' median is refused: a large correction on as much overlap as usual is the odometry
+  // slipping in a turn; on little overlap, a fit to the few walls in view.
+  double overlap_fraction = 0.75;
+  // Throws std::invalid_argument naming the first option out of its domain.
+  void Validate() const;
+};
+
+// The largest correction from the prediction a refinement may make: position (m), heading (rad).
+struct CorrectionBound {
+  double translation_m = 0.0;
+  double rotation_rad = 0.0;
+  bool Exceeded(const Pose2D& correction) const;
+};
+
+class CorrectionGate {
+ public:
+  explicit CorrectionGate(CorrectionGateOptions options = {}) : options_(options) {}
+
+  // Learns the correction (Between(prediction, posture)) of a confirmed scan.
+  void Add(const Pose2D& correction, double match_ratio);
+  // The bound after `unconfirmed` scans in a row were not confirmed; none while the gate is off
+  // or has seen fewer than min_samples confirmed scans.
+  std::optional<CorrectionBound> Bound(int unconfirmed) const;
+  std::size_t samples() const { return translations_m_.size(); }
+
+  // Whether the refinement `refined` of a scan predicted at `prediction` goes beyond the bound
+  // after `unconfirmed` scans in a row, unless it agrees with the posture refused at the previous
+  // localised scan; it becomes the refused posture when it does (none when it does not).
+  bool Refuses(const Pose2D& prediction, const Pose2D& refined, double match_ratio,
+               int unconfirmed);
+  // The refused posture follows the odometry.
+  void Moved(const Pose2D& odometry_increment);
+  // Resuming: the posture the recorded scan refused (none when it refused nothing).
+  void Restore(const std::optional<Pose2D>& refused) { refused_ = refused; }
+
+ private:
+  CorrectionGateOptions options_;
+  std::deque<double> translations_m_, rotations_rad_, match_ratios_;
+  // Their medians, updated by Add.
+  double median_translation_m_ = 0.0, median_rotation_rad_ = 0.0, median_match_ratio_ = 0.0;
+  std::optional<Pose2D> refused_;
+};
+
+}  // namespace scanloc

@@ -1,0 +1,87 @@
+#include "scanloc/session/correction_gate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace scanloc {
+namespace {
+
+// Below these a median says the map and the odometry agree to within the matcher's noise; the
+// floors keep a run of identical postures from closing the gate to nothing.
+constexpr double kFloorM = 1e-3;
+constexpr double kFloorRad = 1e-3;
+
+double Median(const std::deque<double>& values) {
+  std::vector<double> sorted(values.begin(), values.end());
+  const auto mid = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
+  std::nth_element(sorted.begin(), mid, sorted.end());
+  return *mid;
+}
+
+}  // namespace
+
+void CorrectionGateOptions::Validate() const {
+  if (!(std::isfinite(factor) && factor >= 0.0))
+    throw std::invalid_argument("CorrectionGateOptions: factor must be finite and >= 0");
+  if (window < 0 || min_samples < 1)
+    throw std::invalid_argument("CorrectionGateOptions: window >= 0 and min_samples >= 1");
+  if (!(agree_factor >= 0.0 && std::isfinite(agree_factor)))
+    throw std::invalid_argument("CorrectionGateOptions: agree_factor must be finite and >= 0");
+  if (!(overlap_fraction >= 0.0 && overlap_fraction <= 1.0))
+    throw std::invalid_argument("CorrectionGateOptions: overlap_fraction must be in [0, 1]");
+}
+
+bool CorrectionBound::Exceeded(const Pose2D& correction) const {
+  return std::hypot(correction.x_m, correction.y_m) > translation_m ||
+         std::abs(NormalizeAngle(correction.yaw_rad)) > rotation_rad;
+}
+
+void CorrectionGate::Add(const Pose2D& correction, double match_ratio) {
+  if (options_.window == 0) return;
+  translations_m_.push_back(std::hypot(correction.x_m, correction.y_m));
+  rotations_rad_.push_back(std::abs(NormalizeAngle(correction.yaw_rad)));
+  match_ratios_.push_back(match_ratio);
+  while (translations_m_.size() > static_cast<std::size_t>(options_.window)) {
+    translations_m_.pop_front();
+    rotations_rad_.pop_front();
+    match_ratios_.pop_front();
+  }
+  median_translation_m_ = Median(translations_m_);
+  median_rotation_rad_ = Median(rotations_rad_);
+  median_match_ratio_ = Median(match_ratios_);
+}
+
+std::optional<CorrectionBound> CorrectionGate::Bound(int unconfirmed) const {
+  if (options_.factor == 0.0 ||
+      translations_m_.size() < static_cast<std::size_t>(options_.min_samples))
+    return std::nullopt;
+  const double scale = options_.factor * std::sqrt(1.0 + std::max(0, unconfirmed));
+  return CorrectionBound{scale * std::max(kFloorM, median_translation_m_),
+                         scale * std::max(kFloorRad, median_rotation_rad_)};
+}
+
+bool CorrectionGate::Refuses(const Pose2D& prediction, const Pose2D& refined, double match_ratio,
+                             int unconfirmed) {
+  const std::optional<CorrectionBound> bound = Bound(unconfirmed);
+  const std::optional<Pose2D> refused = std::exchange(refused_, std::nullopt);
+  if (!bound || !bound->Exceeded(Between(prediction, refined)) ||
+      match_ratio >= options_.overlap_fraction * median_match_ratio_)
+    return false;
+  const double agree = options_.agree_factor / options_.factor;
+  if (refused &&
+      !CorrectionBound{agree * bound->translation_m, agree * bound->rotation_rad}.Exceeded(
+          Between(*refused, refined)))
+    return false;
+  refused_ = refined;
+  return true;
+}
+
+void CorrectionGate::Moved(const Pose2D& odometry_increment) {
+  if (refused_) refused_ = *refused_ * odometry_increment;
+}
+
+}  // namespace scanloc

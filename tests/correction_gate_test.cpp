@@ -1,0 +1,98 @@
+// The correction gate: the odometry's error learned from the confirmed scans' corrections; a
+// refinement far beyond it on little overlap is refused, unless the next scan agrees with it.
+
+#include "scanloc/session/correction_gate.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace scanloc {
+namespace {
+
+// Ten confirmed scans corrected by 0.02 m and 0.005 rad, with 80 % of their beams matched.
+CorrectionGate Learned(CorrectionGateOptions options = {}) {
+  options.min_samples = 10;
+  CorrectionGate gate(options);
+  for (int i = 0; i < 10; ++i) gate.Add(Pose2D{0.02, 0.0, i % 2 ? 0.005 : -0.005}, 0.8);
+  return gate;
+}
+
+TEST(CorrectionGate, NothingIsBoundedBeforeMinSamplesConfirmedScans) {
+  CorrectionGate gate({8.0, 500, 3});
+  gate.Add(Pose2D{0.02, 0.0, 0.005}, 0.8);
+  gate.Add(Pose2D{0.02, 0.0, 0.005}, 0.8);
+  EXPECT_FALSE(gate.Bound(0).has_value());
+  EXPECT_FALSE(gate.Refuses(Pose2D{}, Pose2D{5.0, 0.0, 1.0}, 0.1, 0));
+  gate.Add(Pose2D{0.02, 0.0, 0.005}, 0.8);
+  ASSERT_TRUE(gate.Bound(0).has_value());
+}
+
+TEST(CorrectionGate, TheBoundIsFactorTimesTheMedianCorrectionGrowingWithTheUnconfirmedScans) {
+  const CorrectionGate gate = Learned();
+  const CorrectionBound now = *gate.Bound(0);
+  EXPECT_NEAR(now.translation_m, 8.0 * 0.02, 1e-12);
+  EXPECT_NEAR(now.rotation_rad, 8.0 * 0.005, 1e-12);
+  const CorrectionBound after_three = *gate.Bound(3);  // √4 = 2 times wider
+  EXPECT_NEAR(after_three.translation_m, 2.0 * now.translation_m, 1e-12);
+  EXPECT_NEAR(after_three.rotation_rad, 2.0 * now.rotation_rad, 1e-12);
+}
+
+TEST(CorrectionGate, ALargeCorrectionOnLittleOverlapIsRefusedAndOnUsualOverlapKept) {
+  const Pose2D prediction{3.0, -2.0, 0.5};
+  const Pose2D turned = prediction * Pose2D{0.0, 0.0, 0.14};  // 0.14 rad > 8 · 0.005
+  CorrectionGate gate = Learned();
+  EXPECT_TRUE(gate.Refuses(prediction, turned, 0.35, 0));  // 0.35 < 0.75 · 0.8
+  gate = Learned();
+  EXPECT_FALSE(gate.Refuses(prediction, turned, 0.7, 0));  // as much overlap as usual
+  gate = Learned();
+  const Pose2D small = prediction * Pose2D{0.1, 0.0, 0.03};  // within 0.16 m and 0.04 rad
+  EXPECT_FALSE(gate.Refuses(prediction, small, 0.35, 0));
+}
+
+TEST(CorrectionGate, ARefusedPostureTheNextScanAgreesWithIsKept) {
+  CorrectionGate gate = Learned();
+  const Pose2D prediction{0.0, 0.0, 0.0};
+  const Pose2D refined{0.0, 0.3, 0.1};
+  ASSERT_TRUE(gate.Refuses(prediction, refined, 0.35, 0));
+  const Pose2D step{0.5, 0.0, 0.05};
+  gate.Moved(step);
+  // The next scan's refinement lands on the refused posture carried by the step, 1 cm off:
+  // within 3 · the median corrections, so the odometry slipped and the correction stands.
+  const Pose2D agreeing = refined * step * Pose2D{0.01, 0.0, 0.0};
+  EXPECT_FALSE(gate.Refuses(prediction * step, agreeing, 0.35, 1));
+}
+
+TEST(CorrectionGate, ARefusedPostureTheNextScanContradictsIsRefusedAgain) {
+  CorrectionGate gate = Learned();
+  const Pose2D prediction{0.0, 0.0, 0.0};
+  ASSERT_TRUE(gate.Refuses(prediction, Pose2D{0.0, 0.3, 0.1}, 0.35, 0));
+  const Pose2D step{0.5, 0.0, 0.0};
+  gate.Moved(step);
+  // Turned the other way beyond the bound after one unconfirmed scan (√2 · 0.04 rad).
+  EXPECT_TRUE(
+      gate.Refuses(prediction * step, prediction * step * Pose2D{0.0, -0.3, -0.1}, 0.35, 1));
+}
+
+TEST(CorrectionGate, AFactorOfZeroTurnsTheGateOff) {
+  CorrectionGateOptions options;
+  options.factor = 0.0;
+  CorrectionGate gate = Learned(options);
+  EXPECT_FALSE(gate.Bound(0).has_value());
+  EXPECT_FALSE(gate.Refuses(Pose2D{}, Pose2D{5.0, 0.0, 1.0}, 0.1, 0));
+}
+
+TEST(CorrectionGate, OptionsOutOfTheirDomainAreRefused) {
+  CorrectionGateOptions options;
+  options.factor = -1.0;
+  EXPECT_THROW(options.Validate(), std::invalid_argument);
+  options = {};
+  options.min_samples = 0;
+  EXPECT_THROW(options.Validate(), std::invalid_argument);
+  options = {};
+  options.overlap_fraction = 1.5;
+  EXPECT_THROW(options.Validate(), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace scanloc
