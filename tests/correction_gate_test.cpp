@@ -23,7 +23,7 @@ TEST(CorrectionGate, NothingIsBoundedBeforeMinSamplesConfirmedScans) {
   gate.Add(Pose2D{0.02, 0.0, 0.005}, 0.8);
   gate.Add(Pose2D{0.02, 0.0, 0.005}, 0.8);
   EXPECT_FALSE(gate.Bound(0).has_value());
-  EXPECT_FALSE(gate.Refuses(Pose2D{}, Pose2D{5.0, 0.0, 1.0}, 0.1, 0));
+  EXPECT_FALSE(gate.Refuses(Pose2D{}, Pose2D{5.0, 0.0, 1.0}, RefinementSupport{0.1, {}}, 0));
   gate.Add(Pose2D{0.02, 0.0, 0.005}, 0.8);
   ASSERT_TRUE(gate.Bound(0).has_value());
 }
@@ -42,36 +42,62 @@ TEST(CorrectionGate, ALargeCorrectionOnLittleOverlapIsRefusedAndOnUsualOverlapKe
   const Pose2D prediction{3.0, -2.0, 0.5};
   const Pose2D turned = prediction * Pose2D{0.0, 0.0, 0.14};  // 0.14 rad > 8 · 0.005
   CorrectionGate gate = Learned();
-  EXPECT_TRUE(gate.Refuses(prediction, turned, 0.35, 0));  // 0.35 < 0.75 · 0.8
+  EXPECT_TRUE(
+      gate.Refuses(prediction, turned, RefinementSupport{0.35, {}}, 0));  // 0.35 < 0.75 · 0.8
   gate = Learned();
-  EXPECT_FALSE(gate.Refuses(prediction, turned, 0.7, 0));  // as much overlap as usual
+  EXPECT_FALSE(
+      gate.Refuses(prediction, turned, RefinementSupport{0.7, {}}, 0));  // as much overlap as usual
   gate = Learned();
   const Pose2D small = prediction * Pose2D{0.1, 0.0, 0.03};  // within 0.16 m and 0.04 rad
-  EXPECT_FALSE(gate.Refuses(prediction, small, 0.35, 0));
+  EXPECT_FALSE(gate.Refuses(prediction, small, RefinementSupport{0.35, {}}, 0));
+}
+
+TEST(CorrectionGate, TheWeakAxisRatioIsTheDeviationAlongADirectionOverTheSmallest) {
+  // A corridor along x: 0.04 m of deviation along it, 0.01 m across.
+  const Eigen::Matrix2d corridor = Eigen::Vector2d(0.04 * 0.04, 0.01 * 0.01).asDiagonal();
+  EXPECT_NEAR(WeakAxisRatio(corridor, Eigen::Vector2d(1.0, 0.0)), 4.0, 1e-12);
+  EXPECT_NEAR(WeakAxisRatio(corridor, Eigen::Vector2d(0.0, -2.0)), 1.0, 1e-12);
+  EXPECT_NEAR(WeakAxisRatio(corridor, Eigen::Vector2d(1.0, 1.0)), std::sqrt(8.5), 1e-12);
+  EXPECT_EQ(WeakAxisRatio(corridor, Eigen::Vector2d::Zero()), 0.0);
+}
+
+TEST(CorrectionGate, ASlideAlongTheLeastConstrainedAxisIsRefusedOnFullOverlap) {
+  const Eigen::Matrix2d corridor = Eigen::Vector2d(0.04 * 0.04, 0.01 * 0.01).asDiagonal();
+  const Pose2D prediction{1.0, 1.0, 0.0};
+  CorrectionGate gate = Learned();
+  // 0.5 m along the corridor (> 8 · 0.02 m), with as much overlap as usual.
+  EXPECT_TRUE(gate.Refuses(prediction, Pose2D{1.5, 1.0, 0.0}, RefinementSupport{0.8, corridor}, 0));
+  gate = Learned();
+  // The same across it: the scan constrains that direction best, the correction stands.
+  EXPECT_FALSE(
+      gate.Refuses(prediction, Pose2D{1.0, 1.5, 0.0}, RefinementSupport{0.8, corridor}, 0));
+  gate = Learned();
+  // Without a covariance nothing says the direction is weak.
+  EXPECT_FALSE(gate.Refuses(prediction, Pose2D{1.5, 1.0, 0.0}, RefinementSupport{0.8, {}}, 0));
 }
 
 TEST(CorrectionGate, ARefusedPostureTheNextScanAgreesWithIsKept) {
   CorrectionGate gate = Learned();
   const Pose2D prediction{0.0, 0.0, 0.0};
   const Pose2D refined{0.0, 0.3, 0.1};
-  ASSERT_TRUE(gate.Refuses(prediction, refined, 0.35, 0));
+  ASSERT_TRUE(gate.Refuses(prediction, refined, RefinementSupport{0.35, {}}, 0));
   const Pose2D step{0.5, 0.0, 0.05};
   gate.Moved(step);
   // The next scan's refinement lands on the refused posture carried by the step, 1 cm off:
   // within 3 · the median corrections, so the odometry slipped and the correction stands.
   const Pose2D agreeing = refined * step * Pose2D{0.01, 0.0, 0.0};
-  EXPECT_FALSE(gate.Refuses(prediction * step, agreeing, 0.35, 1));
+  EXPECT_FALSE(gate.Refuses(prediction * step, agreeing, RefinementSupport{0.35, {}}, 1));
 }
 
 TEST(CorrectionGate, ARefusedPostureTheNextScanContradictsIsRefusedAgain) {
   CorrectionGate gate = Learned();
   const Pose2D prediction{0.0, 0.0, 0.0};
-  ASSERT_TRUE(gate.Refuses(prediction, Pose2D{0.0, 0.3, 0.1}, 0.35, 0));
+  ASSERT_TRUE(gate.Refuses(prediction, Pose2D{0.0, 0.3, 0.1}, RefinementSupport{0.35, {}}, 0));
   const Pose2D step{0.5, 0.0, 0.0};
   gate.Moved(step);
   // Turned the other way beyond the bound after one unconfirmed scan (√2 · 0.04 rad).
-  EXPECT_TRUE(
-      gate.Refuses(prediction * step, prediction * step * Pose2D{0.0, -0.3, -0.1}, 0.35, 1));
+  EXPECT_TRUE(gate.Refuses(prediction * step, prediction * step * Pose2D{0.0, -0.3, -0.1},
+                           RefinementSupport{0.35, {}}, 1));
 }
 
 TEST(CorrectionGate, AFactorOfZeroTurnsTheGateOff) {
@@ -79,7 +105,7 @@ TEST(CorrectionGate, AFactorOfZeroTurnsTheGateOff) {
   options.factor = 0.0;
   CorrectionGate gate = Learned(options);
   EXPECT_FALSE(gate.Bound(0).has_value());
-  EXPECT_FALSE(gate.Refuses(Pose2D{}, Pose2D{5.0, 0.0, 1.0}, 0.1, 0));
+  EXPECT_FALSE(gate.Refuses(Pose2D{}, Pose2D{5.0, 0.0, 1.0}, RefinementSupport{0.1, {}}, 0));
 }
 
 TEST(CorrectionGate, OptionsOutOfTheirDomainAreRefused) {
@@ -91,6 +117,9 @@ TEST(CorrectionGate, OptionsOutOfTheirDomainAreRefused) {
   EXPECT_THROW(options.Validate(), std::invalid_argument);
   options = {};
   options.overlap_fraction = 1.5;
+  EXPECT_THROW(options.Validate(), std::invalid_argument);
+  options = {};
+  options.weak_axis_ratio = 0.5;
   EXPECT_THROW(options.Validate(), std::invalid_argument);
 }
 

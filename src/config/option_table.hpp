@@ -177,8 +177,11 @@ void VisitSession(C& c, V& v) {
     "the recent confirmed scans' median correction (×√(n+1) after n unconfirmed) is refused; 0: "
     "off");
   v("session.correction_gate_overlap_fraction", s.correction_gate.overlap_fraction, Bounds{0, 1},
-    "correction gate: only a refinement matching fewer beams than this fraction of the recent "
-    "confirmed scans' median match ratio is refused");
+    "correction gate: a refinement beyond the bound is refused when it matches fewer beams than "
+    "this fraction of the recent confirmed scans' median match ratio ...");
+  v("session.correction_gate_weak_axis_ratio", s.correction_gate.weak_axis_ratio, Bounds{1, 1e3},
+    "correction gate: ... or that exceeds it in position along a direction this many times less "
+    "constrained (σ, the refinement's covariance) than the best");
   v("session.correction_gate_agree_factor", s.correction_gate.agree_factor, Bounds{0, 1e3},
     "correction gate: a refused posture stands when the next localised scan lands within this "
     "many median corrections of it");

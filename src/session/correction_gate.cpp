@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include <Eigen/LU>
+
 namespace scanloc {
 namespace {
 
@@ -33,11 +35,30 @@ void CorrectionGateOptions::Validate() const {
     throw std::invalid_argument("CorrectionGateOptions: agree_factor must be finite and >= 0");
   if (!(overlap_fraction >= 0.0 && overlap_fraction <= 1.0))
     throw std::invalid_argument("CorrectionGateOptions: overlap_fraction must be in [0, 1]");
+  if (!(weak_axis_ratio >= 1.0))
+    throw std::invalid_argument("CorrectionGateOptions: weak_axis_ratio must be >= 1");
 }
 
 bool CorrectionBound::Exceeded(const Pose2D& correction) const {
-  return std::hypot(correction.x_m, correction.y_m) > translation_m ||
-         std::abs(NormalizeAngle(correction.yaw_rad)) > rotation_rad;
+  return ExceededInPosition(correction) || ExceededInHeading(correction);
+}
+
+bool CorrectionBound::ExceededInHeading(const Pose2D& correction) const {
+  return std::abs(NormalizeAngle(correction.yaw_rad)) > rotation_rad;
+}
+
+bool CorrectionBound::ExceededInPosition(const Pose2D& correction) const {
+  return std::hypot(correction.x_m, correction.y_m) > translation_m;
+}
+
+double WeakAxisRatio(const Eigen::Matrix2d& covariance, const Eigen::Vector2d& direction) {
+  const double norm2 = direction.squaredNorm();
+  const Eigen::Matrix2d sym = 0.5 * (covariance + covariance.transpose());
+  const double half_trace = 0.5 * sym.trace();
+  const double smallest =
+      half_trace - std::sqrt(std::max(0.0, half_trace * half_trace - sym.determinant()));
+  if (!(norm2 > 0.0) || !(smallest > 0.0)) return 0.0;
+  return std::sqrt(direction.dot(sym * direction) / norm2 / smallest);
 }
 
 void CorrectionGate::Add(const Pose2D& correction, double match_ratio) {
@@ -64,13 +85,24 @@ std::optional<CorrectionBound> CorrectionGate::Bound(int unconfirmed) const {
                          scale * std::max(kFloorRad, median_rotation_rad_)};
 }
 
-bool CorrectionGate::Refuses(const Pose2D& prediction, const Pose2D& refined, double match_ratio,
-                             int unconfirmed) {
+bool CorrectionGate::Unsupported(const CorrectionBound& bound, const Pose2D& prediction,
+                                 const Pose2D& refined, const RefinementSupport& support) const {
+  const Pose2D correction = Between(prediction, refined);
+  if (!bound.Exceeded(correction)) return false;
+  if (support.match_ratio < options_.overlap_fraction * median_match_ratio_) return true;
+  // A slide: beyond the bound in position only (a turn where the odometry slipped moves the
+  // position with the heading).
+  return support.position_covariance && !bound.ExceededInHeading(correction) &&
+         WeakAxisRatio(*support.position_covariance,
+                       Eigen::Vector2d(refined.x_m - prediction.x_m,
+                                       refined.y_m - prediction.y_m)) >= options_.weak_axis_ratio;
+}
+
+bool CorrectionGate::Refuses(const Pose2D& prediction, const Pose2D& refined,
+                             const RefinementSupport& support, int unconfirmed) {
   const std::optional<CorrectionBound> bound = Bound(unconfirmed);
   const std::optional<Pose2D> refused = std::exchange(refused_, std::nullopt);
-  if (!bound || !bound->Exceeded(Between(prediction, refined)) ||
-      match_ratio >= options_.overlap_fraction * median_match_ratio_)
-    return false;
+  if (!bound || !Unsupported(*bound, prediction, refined, support)) return false;
   const double agree = options_.agree_factor / options_.factor;
   if (refused &&
       !CorrectionBound{agree * bound->translation_m, agree * bound->rotation_rad}.Exceeded(

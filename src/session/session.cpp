@@ -229,8 +229,11 @@ void Session::LocaliseInto(IterationRecord& record, const Iteration& iteration) 
   // The wide search's window, not the gate, bounds a lost session's correction.
   if (!was_lost) {
     record.correction_bound = gate_.Bound(drift_.unconfirmed());
-    record.beyond_odometry = gate_.Refuses(record.prediction, kept.T_world_robot,
-                                           kept.test.MatchRatio(), drift_.unconfirmed());
+    RefinementSupport support{kept.test.MatchRatio(), std::nullopt};
+    if (kept.refinement && kept.refinement->has_covariance)
+      support.position_covariance = kept.refinement->covariance.topLeftCorner<2, 2>();
+    record.beyond_odometry =
+        gate_.Refuses(record.prediction, kept.T_world_robot, support, drift_.unconfirmed());
     if (record.beyond_odometry) record.validated = false;
   }
   record.T_world_robot = TakesPrediction(record, kept) ? record.prediction : kept.T_world_robot;

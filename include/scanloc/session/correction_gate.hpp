@@ -8,10 +8,16 @@
 // median 0.004 rad) and lost its map. Such a refinement is neither confirmed nor kept: the scan
 // keeps the prediction (never-lost issue: never worse than the odometry the data cannot
 // disprove). The bound follows from the data, so it is tight for good odometry and loose for bad.
+// A large correction stands when the scan supports it: on as much overlap as usual, along a
+// direction the scan constrains as well as any other (a turn where the odometry slipped); it is
+// refused on little overlap (a fit to the few walls in view) or, in position, along the direction
+// the scan constrains least (a slide along a corridor's axis).
 
 #include <cstddef>
 #include <deque>
 #include <optional>
+
+#include <Eigen/Core>
 
 #include "scanloc/geometry/pose2d.hpp"
 
@@ -29,10 +35,13 @@ struct CorrectionGateOptions {
   // within agree_factor · the median corrections of it (carried by the odometry): two scans that
   // agree on where the odometry went wrong are the odometry slipping, not a wrong fit.
   double agree_factor = 3.0;
-  // Only a refinement whose match ratio (rule 1) is below this fraction of the remembered confirmed
-  // scans' median is refused: a large correction on as much overlap as usual is the odometry
-  // slipping in a turn; on little overlap, a fit to the few walls in view.
+  // A correction beyond the bound is refused when the refinement's match ratio (rule 1) is below
+  // this fraction of the remembered confirmed scans' median ...
   double overlap_fraction = 0.75;
+  // ... or when it exceeds the bound in position only (not in heading), along a direction whose
+  // standard deviation (the refinement's covariance) is at least this many times the
+  // best-constrained direction's.
+  double weak_axis_ratio = 3.0;
   // Throws std::invalid_argument naming the first option out of its domain.
   void Validate() const;
 };
@@ -42,7 +51,20 @@ struct CorrectionBound {
   double translation_m = 0.0;
   double rotation_rad = 0.0;
   bool Exceeded(const Pose2D& correction) const;
+  bool ExceededInPosition(const Pose2D& correction) const;
+  bool ExceededInHeading(const Pose2D& correction) const;
 };
+
+// What a refinement's scan says for it: its match ratio, and the covariance of its position (world
+// frame, m²) when the refinement has one.
+struct RefinementSupport {
+  double match_ratio = 0.0;
+  std::optional<Eigen::Matrix2d> position_covariance;
+};
+
+// The standard deviation of `covariance` along `direction` over its smallest one (1 when the
+// direction is the best constrained; 0 when either is zero).
+double WeakAxisRatio(const Eigen::Matrix2d& covariance, const Eigen::Vector2d& direction);
 
 class CorrectionGate {
  public:
@@ -58,7 +80,7 @@ class CorrectionGate {
   // Whether the refinement `refined` of a scan predicted at `prediction` goes beyond the bound
   // after `unconfirmed` scans in a row, unless it agrees with the posture refused at the previous
   // localised scan; it becomes the refused posture when it does (none when it does not).
-  bool Refuses(const Pose2D& prediction, const Pose2D& refined, double match_ratio,
+  bool Refuses(const Pose2D& prediction, const Pose2D& refined, const RefinementSupport& support,
                int unconfirmed);
   // The refused posture follows the odometry.
   void Moved(const Pose2D& odometry_increment);
@@ -71,6 +93,10 @@ class CorrectionGate {
   // Their medians, updated by Add.
   double median_translation_m_ = 0.0, median_rotation_rad_ = 0.0, median_match_ratio_ = 0.0;
   std::optional<Pose2D> refused_;
+
+  // Whether the scan fails to support a correction beyond `bound` (see the options).
+  bool Unsupported(const CorrectionBound& bound, const Pose2D& prediction, const Pose2D& refined,
+                   const RefinementSupport& support) const;
 };
 
 }  // namespace scanloc
