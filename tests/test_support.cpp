@@ -4,11 +4,15 @@
 #include "scanloc/evaluation/relations_evaluation.hpp"
 #include "scanloc/io/run_summary.hpp"
 
+#include <unistd.h>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <optional>
 #include <random>
+#include <string>
+#include <vector>
 
 namespace scanloc::testing {
 
@@ -93,10 +97,42 @@ std::string DatasetsDir() {
   return std::filesystem::is_directory(dir) ? dir : "";
 }
 
+namespace {
+
+// The directories TemporaryDir() made, removed when the test program ends: a test that writes a
+// file or two into one leaves nothing behind in the system's temporary folder.
+class MadeDirectories {
+ public:
+  ~MadeDirectories() {
+    if (::getpid() != owner_) return;  // not in a forked child
+    for (const std::string& dir : dirs_) {
+      std::error_code ignored;
+      std::filesystem::remove_all(dir, ignored);
+    }
+  }
+  void Add(std::string dir) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    dirs_.push_back(std::move(dir));
+  }
+
+ private:
+  const pid_t owner_ = ::getpid();
+  std::mutex mutex_;
+  std::vector<std::string> dirs_;
+};
+
+MadeDirectories& Made() {
+  static MadeDirectories made;
+  return made;
+}
+
+}  // namespace
+
 std::string TemporaryDir() {
   auto base = std::filesystem::temp_directory_path() / "scanloc-test-XXXXXX";
   std::string pattern = base.string();
   if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
+  Made().Add(pattern);
   return pattern;
 }
 

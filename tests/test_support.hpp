@@ -71,7 +71,7 @@ LaserScan RealScan(const LineMap& map, const Pose2D& T_world_laser_true, double 
 void ExpectParseError(const std::function<void()>& read, const std::string& path, std::size_t line,
                       const std::string& expected);
 
-// A fresh temporary directory for one test.
+// A fresh temporary directory for one test, removed when the test program ends.
 std::string TemporaryDir();
 
 // A test with its own temporary directory, removed afterwards.
