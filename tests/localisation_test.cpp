@@ -86,6 +86,56 @@ TEST_F(LocalisationTest, WhenNoneIsValidTheCheapestIsRefinedAndKeptAsAFlaggedGue
   EXPECT_EQ(result.problems.back(), "no candidate passed the validation rules");
 }
 
+TEST_F(LocalisationTest, BestValidAndFirstAlsoRefinesAFirstCandidateTheRulesRejectedAsGiven) {
+  // The first candidate (a session's prediction) 0.12 m and 3° off the truth fails rule 2 as
+  // given under a 5 cm E_max; the second, 2 cm off, passes.
+  const std::vector<Candidate> candidates{
+      {{truth_.x_m + 0.12, truth_.y_m - 0.05, truth_.yaw_rad + 3.0 * M_PI / 180.0}, "prediction"},
+      {{truth_.x_m + 0.02, truth_.y_m, truth_.yaw_rad}, "near"}};
+  LocalisationOptions options;
+  options.validation.max_expect_value_m = 0.05;
+  const auto run = [&](RefinePolicy policy) {
+    return Localise({&room_, nullptr}, scan_, candidates, {}, options, policy, 3);
+  };
+  const LocalisationResult best_valid = run(RefinePolicy::kBestValid);
+  ASSERT_NE(best_valid.evaluated[0].verdict, Verdict::kValid);
+  ASSERT_EQ(best_valid.evaluated[1].verdict, Verdict::kValid);
+  ASSERT_EQ(best_valid.refined.size(), 1u);
+  EXPECT_EQ(best_valid.refined[0].from, 1);
+
+  const LocalisationResult with_first = run(RefinePolicy::kBestValidAndFirst);
+  ASSERT_EQ(with_first.refined.size(), 2u);
+  EXPECT_EQ(with_first.refined[0].from, 1);  // the valid ones first, as before
+  EXPECT_EQ(with_first.refined[1].from, 0);
+  EXPECT_EQ(with_first.refined[1].verdict, Verdict::kValid);  // refined, it fits
+  const Pose2D error = Between(truth_, with_first.refined[1].T_world_robot);
+  EXPECT_LT(std::hypot(error.x_m, error.y_m), 0.01);
+  EXPECT_LT(std::abs(error.yaw_rad), 0.002);
+  // A first candidate that passes is refined once, in its rank's turn.
+  const LocalisationResult valid_first = Run(RefinePolicy::kBestValidAndFirst, 3);
+  const LocalisationResult valid_first_before = Run(RefinePolicy::kBestValid, 3);
+  ASSERT_EQ(valid_first.refined.size(), valid_first_before.refined.size());
+  for (std::size_t r = 0; r < valid_first.refined.size(); ++r)
+    EXPECT_EQ(valid_first.refined[r].from, valid_first_before.refined[r].from);
+}
+
+TEST_F(LocalisationTest, BestValidAndFirstKeepsTheCheapestCandidatesGuessWhenNoRefinementPasses) {
+  // Nothing can pass rule 2; the first candidate is 0.3 m off, the cheapest is the truth.
+  const std::vector<Candidate> candidates{
+      {{truth_.x_m + 0.3, truth_.y_m, truth_.yaw_rad}, "prediction"}, {truth_, "truth"}};
+  LocalisationOptions options;
+  options.validation.max_expect_value_m = 1e-4;
+  const LocalisationResult result = Localise({&room_, nullptr}, scan_, candidates, {}, options,
+                                             RefinePolicy::kBestValidAndFirst, 3);
+  ASSERT_GT(result.evaluated[0].cost, result.evaluated[1].cost);
+  ASSERT_EQ(result.refined.size(), 2u);
+  EXPECT_EQ(result.refined[0].from, 1);
+  EXPECT_EQ(result.refined[1].from, 0);
+  EXPECT_EQ(result.best_refined, -1);
+  EXPECT_EQ(result.kept, 0);  // the cheapest candidate's refinement, as kBestValid keeps
+  EXPECT_FALSE(result.validated());
+}
+
 TEST_F(LocalisationTest, AllRefinesEveryCandidateInInputOrderFromItsEvaluatedScore) {
   const LocalisationResult result = Run(RefinePolicy::kAll);
   ASSERT_EQ(result.refined.size(), 3u);

@@ -335,7 +335,9 @@ TEST(Session, EveryRefinedCandidateIsRecordedAndTheKeptOneIsAmongThem) {
     ASSERT_TRUE(r.localisation.has_value());
     const std::vector<RankedCandidate>& refined = r.localisation->refined;
     ASSERT_FALSE(refined.empty());
-    EXPECT_LE(refined.size(), static_cast<std::size_t>(options.max_refined_candidates));
+    // Up to max_refined_candidates valid ones, and the prediction when the rules rejected it.
+    EXPECT_LE(refined.size(), static_cast<std::size_t>(options.max_refined_candidates) +
+                                  (options.refine_prediction ? 1 : 0));
     ASSERT_NE(r.Kept(), nullptr);
     EXPECT_GE(r.localisation->kept, 0);
     EXPECT_LT(r.localisation->kept, static_cast<int>(refined.size()));

@@ -137,6 +137,9 @@ void VisitSession(C& c, V& v) {
   v("session.heading_step_rad", s.heading_step_rad, Bounds{1e-4, M_PI}, "... by this step, rad");
   v("session.max_refined_candidates", s.max_refined_candidates, Bounds{1, 1000},
     "valid candidates refined, best first");
+  v("session.refine_prediction", s.refine_prediction,
+    "the odometry prediction is refined too when the rules rejected it as given (kept only when "
+    "its refinement passes them)");
   v("session.heading_candidates_min_turn_rad", s.heading_candidates_min_turn_rad, kAngle,
     "turned candidates only when the odometry turned more than this, rad");
   v("session.heading_candidates_on_failure", s.heading_candidates_on_failure,

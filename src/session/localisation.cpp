@@ -44,11 +44,13 @@ std::vector<RankedCandidate> Evaluate(const MapView& map, const LaserScan& scan,
   return evaluated;
 }
 
-// The index of the lowest cost (3.11), the first on ties; -1 when none is finite.
-int Cheapest(const std::vector<RankedCandidate>& ranked) {
+// The index of the lowest cost (3.11) among the first `count` (all by default), the first on
+// ties; -1 when none is finite.
+int Cheapest(const std::vector<RankedCandidate>& ranked,
+             std::size_t count = std::numeric_limits<std::size_t>::max()) {
   int cheapest = -1;
   double best_cost = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < ranked.size(); ++i)
+  for (std::size_t i = 0; i < std::min(count, ranked.size()); ++i)
     if (ranked[i].cost < best_cost) {
       best_cost = ranked[i].cost;
       cheapest = static_cast<int>(i);
@@ -56,22 +58,34 @@ int Cheapest(const std::vector<RankedCandidate>& ranked) {
   return cheapest;
 }
 
-// The evaluated candidates to refine, in the order they are refined.
-std::vector<int> ToRefine(const std::vector<RankedCandidate>& evaluated, RefinePolicy policy,
-                          int max_refined) {
+// The evaluated candidates to refine, in the order they are refined, and how many of the first
+// of them a flagged guess is chosen from when no refinement passes the rules: the first
+// candidate that kBestValidAndFirst adds is kept only when the rules pass it.
+struct RefineOrder {
   std::vector<int> order;
-  if (policy == RefinePolicy::kNone) return order;
+  std::size_t guesses = 0;
+};
+RefineOrder ToRefine(const std::vector<RankedCandidate>& evaluated, RefinePolicy policy,
+                     int max_refined) {
+  RefineOrder refine;
+  std::vector<int>& order = refine.order;
+  if (policy == RefinePolicy::kNone) return refine;
   for (std::size_t i = 0; i < evaluated.size(); ++i)
     if (policy == RefinePolicy::kAll || evaluated[i].rank >= 0)
       order.push_back(static_cast<int>(i));
-  if (policy == RefinePolicy::kAll) return order;
-  std::sort(order.begin(), order.end(),
-            [&](int a, int b) { return evaluated[a].rank < evaluated[b].rank; });
-  if (static_cast<int>(order.size()) > max_refined) order.resize(std::max(0, max_refined));
-  if (policy == RefinePolicy::kValidOnly) return order;
-  // None valid: the cheapest by (3.11) alone is the best guess to refine.
-  if (order.empty() && !evaluated.empty()) order.push_back(std::max(0, Cheapest(evaluated)));
-  return order;
+  if (policy != RefinePolicy::kAll) {
+    std::sort(order.begin(), order.end(),
+              [&](int a, int b) { return evaluated[a].rank < evaluated[b].rank; });
+    if (static_cast<int>(order.size()) > max_refined) order.resize(std::max(0, max_refined));
+    // None valid: the cheapest by (3.11) alone is the best guess to refine.
+    if (policy != RefinePolicy::kValidOnly && order.empty() && !evaluated.empty())
+      order.push_back(std::max(0, Cheapest(evaluated)));
+  }
+  refine.guesses = order.size();
+  if (policy == RefinePolicy::kBestValidAndFirst && !evaluated.empty() &&
+      std::find(order.begin(), order.end(), 0) == order.end())
+    order.push_back(0);
+  return refine;
 }
 
 RankedCandidate RefineOne(const MapView& map, const LaserScan& scan, const RankedCandidate& from,
@@ -115,12 +129,13 @@ LocalisationResult Localise(const MapView& map, const LaserScan& scan,
   result.evaluate_s = SecondsSince(evaluate_start);
 
   const auto refine_start = std::chrono::steady_clock::now();
-  for (const int i : ToRefine(result.evaluated, policy, max_refined))
+  const RefineOrder refine = ToRefine(result.evaluated, policy, max_refined);
+  for (const int i : refine.order)
     result.refined.push_back(RefineOne(map, scan, result.evaluated[i], i, mounting, options));
   if (!result.refined.empty()) {
     result.best_refined = RankByRules(result.refined, options.validation);
-    result.kept =
-        result.best_refined >= 0 ? result.best_refined : std::max(0, Cheapest(result.refined));
+    result.kept = result.best_refined >= 0 ? result.best_refined
+                                           : std::max(0, Cheapest(result.refined, refine.guesses));
   }
   result.refine_s = SecondsSince(refine_start);
   return result;

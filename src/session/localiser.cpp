@@ -196,7 +196,8 @@ void Localiser::Track(IterationRecord& record, const Iteration& iteration) {
     const auto candidates =
         PredictionCandidates(h.T_world_robot, {}, turning, mounting_, config_.session);
     results.push_back(Localise(View(), iteration.scan, candidates, mounting_, in_force_,
-                               RefinePolicy::kBestValid, config_.session.max_refined_candidates));
+                               PredictionRefinePolicy(config_.session),
+                               config_.session.max_refined_candidates));
     h.verdict = Verdict::kNoValidPairs;
     if (const RankedCandidate* kept = results.back().Kept())
       TakeRefinement(h, *kept, count_, in_force_);

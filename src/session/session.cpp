@@ -175,6 +175,10 @@ std::vector<Candidate> PredictionCandidates(const Pose2D& prediction,
   return candidates;
 }
 
+RefinePolicy PredictionRefinePolicy(const SessionOptions& options) {
+  return options.refine_prediction ? RefinePolicy::kBestValidAndFirst : RefinePolicy::kBestValid;
+}
+
 // The heading candidates only when the odometry turned since the last localised scan (or is
 // unknown).
 bool Session::Turning(const Iteration& iteration) const {
@@ -206,7 +210,7 @@ LocalisationResult Session::LocaliseCandidates(const Pose2D& prediction, const I
   }
   LocalisationResult result =
       Localise(View(), iteration.scan, candidates(turning), mounting_, options,
-               RefinePolicy::kBestValid, options_.max_refined_candidates);
+               PredictionRefinePolicy(options_), options_.max_refined_candidates);
   result.evaluate_s += first_round_s;
   return result;
 }

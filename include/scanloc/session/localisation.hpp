@@ -37,7 +37,11 @@ enum class RefinePolicy {
   kNone,       // none: the Likelihood Test of the candidates as given (`scanloc test`)
   kBestValid,  // the valid ones best first, up to a number; when none is valid, the cheapest
   kValidOnly,  // the valid ones best first, up to a number; none when none is valid
-  kAll,        // every candidate (`scanloc refine`, the chapter's Tables 2, 5, 6, 8)
+  // kBestValid's, and the first candidate (a session's odometry prediction) whatever the rules
+  // said of it: a posture that fails rule 2 as given may fit once refined, and a turned
+  // candidate that passes may not refine to the right heading.
+  kBestValidAndFirst,
+  kAll,  // every candidate (`scanloc refine`, the chapter's Tables 2, 5, 6, 8)
 };
 
 // The stages' options a localisation runs with (each declared with its stage).

@@ -52,6 +52,13 @@ struct SessionOptions {
   // postures are tested again and ranked by the rules (the chapter's refine-then-validate): in
   // fast turns two headings 5° apart may both look plausible until they are refined.
   int max_refined_candidates = 3;
+  // The prediction is refined too when the rules rejected it as given: a prediction a few
+  // centimetres off may fail rule 2 where a turned candidate passes and refines to a wrong heading
+  // (orebro, acapulco). Its refinement is kept only when the rules pass it and rank it first; when
+  // no refinement passes, the flagged guess is the one the candidates the rules passed (or the
+  // cheapest) give, as without it. Measured on all eight public logs (docs/BENCHMARKS.md,
+  // "The prediction refined when the rules reject it as given").
+  bool refine_prediction = true;
   // A scan is localised only when the odometry moved more than this since the last localised
   // one; the others get the odometry prediction (their posture is still recorded).
   double localise_translation_m = 0.05;
@@ -107,6 +114,10 @@ std::vector<Candidate> PredictionCandidates(const Pose2D& prediction,
                                             const std::vector<Pose2D>& external, bool turning,
                                             const LaserMounting& mounting,
                                             const SessionOptions& options);
+
+// How the candidates of PredictionCandidates are refined: the valid ones best first (up to
+// options.max_refined_candidates), and with options.refine_prediction the prediction as well.
+RefinePolicy PredictionRefinePolicy(const SessionOptions& options);
 
 // Everything a session runs with.
 struct SessionConfig {
