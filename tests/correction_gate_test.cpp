@@ -52,6 +52,18 @@ TEST(CorrectionGate, ALargeCorrectionOnLittleOverlapIsRefusedAndOnUsualOverlapKe
   EXPECT_FALSE(gate.Refuses(prediction, small, RefinementSupport{0.35, {}}, 0));
 }
 
+TEST(CorrectionGate, LowOverlapIsBelowTheOverlapFractionOfTheMedianMatchRatioOnceLearned) {
+  CorrectionGateOptions options;
+  options.min_samples = 10;
+  CorrectionGate gate(options);
+  for (int i = 0; i < 9; ++i) gate.Add(Pose2D{0.02, 0.0, 0.005}, 0.8);
+  EXPECT_FALSE(gate.LowOverlap(0.1));  // nine confirmed scans: nothing learned yet
+  gate.Add(Pose2D{0.02, 0.0, 0.005}, 0.8);
+  // 0.75 × 0.8 = 0.6
+  EXPECT_TRUE(gate.LowOverlap(0.59));
+  EXPECT_FALSE(gate.LowOverlap(0.61));
+}
+
 TEST(CorrectionGate, TheWeakAxisRatioIsTheDeviationAlongADirectionOverTheSmallest) {
   // A corridor along x: 0.04 m of deviation along it, 0.01 m across.
   const Eigen::Matrix2d corridor = Eigen::Vector2d(0.04 * 0.04, 0.01 * 0.01).asDiagonal();

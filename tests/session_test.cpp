@@ -303,6 +303,8 @@ IterationRecord CrowdedScan(bool low_overlap_takes_prediction) {
   SessionOptions options;
   options.initial_pose = sequence.truth.front();
   options.low_overlap_takes_prediction = low_overlap_takes_prediction;
+  // Both rules keep the prediction on this scan: off, the refinement is kept.
+  options.relative_low_overlap_takes_prediction = low_overlap_takes_prediction;
   Session session(SessionConfig{options, {}}, {}, Classroom(), PointMap{});
   for (std::size_t i = 0; i < 20; ++i) session.Process(sequence.iterations[i]);
   return session.Process(sequence.iterations[20]);

@@ -158,6 +158,9 @@ void VisitSession(C& c, V& v) {
     "... unless the prediction's cost (3.11) exceeds this many times the refinement's");
   v("session.low_overlap_takes_prediction", s.low_overlap_takes_prediction,
     "a scan whose refinement fails rule 1 (too little of it on the map) keeps the prediction");
+  v("session.relative_low_overlap_takes_prediction", s.relative_low_overlap_takes_prediction,
+    "an unconfirmed scan whose refinement matches less than the correction gate's overlap "
+    "fraction of the recent confirmed scans' median match ratio keeps the prediction");
   v("session.motion_prior", s.motion_prior.enabled,
     "the odometry's prediction is a prior on the refinement's position (not its heading) ...");
   v("session.motion_prior_floor_m", s.motion_prior.floor_m, Bounds{1e-6, 100},

@@ -116,4 +116,9 @@ void CorrectionGate::Moved(const Pose2D& odometry_increment) {
   if (refused_) refused_ = *refused_ * odometry_increment;
 }
 
+bool CorrectionGate::LowOverlap(double match_ratio) const {
+  return samples() >= static_cast<std::size_t>(options_.min_samples) &&
+         match_ratio < options_.overlap_fraction * median_match_ratio_;
+}
+
 }  // namespace scanloc

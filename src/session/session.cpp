@@ -284,6 +284,8 @@ bool Session::TakesPrediction(const IterationRecord& record, const RankedCandida
   if (options_.low_overlap_takes_prediction &&
       (kept.verdict == Verdict::kLowMatchRatio || kept.verdict == Verdict::kNoValidPairs))
     return true;
+  if (options_.relative_low_overlap_takes_prediction && gate_.LowOverlap(kept.test.MatchRatio()))
+    return true;
   return options_.unconfirmed_takes_prediction &&
          !PredictionDisproved(*record.localisation, options_.prediction_disproved_cost_ratio);
 }

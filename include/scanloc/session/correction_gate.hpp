@@ -76,6 +76,9 @@ class CorrectionGate {
   // or has seen fewer than min_samples confirmed scans.
   std::optional<CorrectionBound> Bound(int unconfirmed) const;
   std::size_t samples() const { return translations_m_.size(); }
+  // A match ratio below overlap_fraction times the remembered confirmed scans' median (false
+  // before min_samples).
+  bool LowOverlap(double match_ratio) const;
 
   // Whether the refinement `refined` of a scan predicted at `prediction` goes beyond the bound
   // after `unconfirmed` scans in a row, unless it agrees with the posture refused at the previous

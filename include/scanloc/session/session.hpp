@@ -87,6 +87,12 @@ struct SessionOptions {
   // cannot disprove the odometry. Measured on all eight public logs under perturbations of the
   // defaults (docs/BENCHMARKS.md, "Never lost").
   bool low_overlap_takes_prediction = true;
+  // ... and so does one whose kept refinement matches less of the scan than the correction gate's
+  // overlap fraction (0.75) of the recent confirmed scans' median match ratio: rule 1's 30 % is
+  // absolute, and a sparse log's unconfirmed refinements on 30–47 % of their pairs were 0.09–0.14 m
+  // and up to 0.18 rad off where the prediction was within 1 cm (fhw noisy, scans 59–62). Measured
+  // on all eight public logs (docs/BENCHMARKS.md, "Unconfirmed scans on less overlap than usual").
+  bool relative_low_overlap_takes_prediction = true;
   // The laser signature learned from the confirmed scans; with learned_max_expect_value, rule 2's
   // E_max is its bound (validation.max_expect_value_m the prior), otherwise it is only recorded.
   // On by default: the sparse Radish logs' scans lie 0.10–0.16 m (median EV) from a map laid by
