@@ -89,7 +89,7 @@ bool CorrectionGate::Unsupported(const CorrectionBound& bound, const Pose2D& pre
                                  const Pose2D& refined, const RefinementSupport& support) const {
   const Pose2D correction = Between(prediction, refined);
   if (!bound.Exceeded(correction)) return false;
-  if (support.match_ratio < options_.overlap_fraction * median_match_ratio_) return true;
+  if (LowOverlap(support.match_ratio)) return true;  // (Bound needs min_samples as LowOverlap)
   // A slide: beyond the bound in position only (a turn where the odometry slipped moves the
   // position with the heading).
   return support.position_covariance && !bound.ExceededInHeading(correction) &&
