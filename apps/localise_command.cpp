@@ -16,12 +16,13 @@ namespace scanloc::app {
 namespace {
 
 // Rule 2's prior E_max becomes the point map's own signature when the session that wrote the map
-// left one beside it: the finished map fits its own scans more loosely than the laser alone.
-void UseMapSignature(const SequenceArguments& a, Config& config) {
+// left one beside it: the finished map fits its own scans more loosely than the laser alone. Its
+// sampled scans raise the bound where the map fits worse than its median (place_bound.hpp).
+void UseMapSignature(const SequenceArguments& a, Config& config, LocaliserConfig& localiser) {
   if (a.point_map_path.empty() || !config.localise.map_signature) return;
   const auto summary = std::filesystem::path(a.point_map_path).parent_path() / "summary.json";
-  const std::optional<double> bound = ReadMapSignatureBound(summary.string());
-  if (!bound) {
+  const std::optional<MapSignature> signature = ReadMapSignature(summary.string());
+  if (!signature) {
     if (!a.quiet)
       std::cerr << "localise: no map signature in " << summary.string()
                 << ": rule 2's prior E_max is " << config.validation.max_expect_value_m
@@ -29,10 +30,24 @@ void UseMapSignature(const SequenceArguments& a, Config& config) {
     return;
   }
   if (!a.quiet)
-    std::cerr << "localise: rule 2's prior E_max " << *bound << " m, the map's own signature ("
-              << summary.string() << "; --set localise.map_signature=false for "
+    std::cerr << "localise: rule 2's prior E_max " << signature->max_expect_value_m
+              << " m, the map's own signature (" << summary.string()
+              << "; --set localise.map_signature=false for "
               << config.validation.max_expect_value_m << " m)\n";
-  config.validation.max_expect_value_m = *bound;
+  config.validation.max_expect_value_m = signature->max_expect_value_m;
+  if (!config.localise.place_bound) return;
+  if (signature->samples.empty()) {
+    if (!a.quiet)
+      std::cerr << "localise: the map signature holds no sampled scans (a map written before "
+                   "they were kept): the bound is the same at every place\n";
+    return;
+  }
+  if (!a.quiet)
+    std::cerr << "localise: rule 2's bound raised where the map's " << signature->samples.size()
+              << " sampled scans fit worse than its median EV "
+              << signature->median_expect_value_m
+              << " m (--set localise.place_bound=false: the same everywhere)\n";
+  localiser.place_bound = PlaceBound(signature->samples, signature->median_expect_value_m);
 }
 
 void Run(const SequenceArguments& a) {
@@ -40,9 +55,9 @@ void Run(const SequenceArguments& a) {
     throw std::invalid_argument(
         "localise needs a map: --point-map MAP.pcd, --line-map FILE, or both");
   Config config = a.config.Build();
-  UseMapSignature(a, config);
-  config.write_occupancy_grid = false;  // the map is not the run's: it is not rebuilt
   LocaliserConfig localiser;
+  UseMapSignature(a, config, localiser);
+  config.write_occupancy_grid = false;  // the map is not the run's: it is not rebuilt
   localiser.localiser = config.localise;
   if (!a.initial_pose.empty())
     localiser.initial_pose = Pose2D(a.initial_pose[0], a.initial_pose[1], a.initial_pose[2]);

@@ -50,6 +50,19 @@ TEST(RankCandidates, Rule2RejectsHighExpectValueAndAcceptsBelowIt) {
   EXPECT_EQ(r.candidates[1].verdict, Verdict::kValid);
 }
 
+TEST(RankCandidates, ACandidatesOwnExpectValueBoundDecidesRule2ForItAndZeroMeansTheOptions) {
+  ValidationOptions options;
+  options.max_expect_value_m = 0.10;
+  const std::vector<LikelihoodTestResult> tests{
+      Moments(100, 90, 0.12, 0.003), Moments(100, 90, 0.12, 0.003), Moments(100, 90, 0.09, 0.003)};
+  const auto r = RankCandidates(tests, options, {0.15, 0.0, 0.08});
+  EXPECT_EQ(r.candidates[0].verdict, Verdict::kValid) << "its place's 0.15 m, not 0.10 m";
+  EXPECT_EQ(r.candidates[1].verdict, Verdict::kHighExpectValue) << "0: the options' 0.10 m";
+  EXPECT_EQ(r.candidates[2].verdict, Verdict::kHighExpectValue) << "its own 0.08 m";
+  EXPECT_EQ(RankCandidates(tests, options).candidates[0].verdict, Verdict::kHighExpectValue);
+  EXPECT_THROW(RankCandidates(tests, options, {0.15}), std::invalid_argument);
+}
+
 TEST(RankCandidates, Rule3RejectsMuchHigherCostAndKeepsCloseCost) {
   // Costs (α = 0.1): 0.02 + 0.1·0.1 = 0.030; 0.040 + 0.1·0.3 = 0.070 (> 1.5·0.030);
   // 0.034 + 0.1·0.1 = 0.044 (< 1.5·0.030 = 0.045, kept).

@@ -75,6 +75,40 @@ TEST(HypothesisEvidence, TheHistoryKeepsTheNewestCostsAndSkipsScansWithoutOne) {
   EXPECT_DOUBLE_EQ(h.costs.back().cost, 0.5);
 }
 
+Hypothesis Held(double cost, double truncated_mean_m, bool validated = true) {
+  Hypothesis h;
+  h.cost = cost;
+  h.truncated_mean_m = truncated_mean_m;
+  h.validated = validated;
+  h.verdict = validated ? Verdict::kValid : Verdict::kLowMatchRatio;
+  return h;
+}
+
+TEST(HypothesisEvidence, Rule3AmongHeldHypothesesCountsOnlyWhereTheTruncatedMeanAgrees) {
+  // A corridor look-alike matching fewer beams tightly: the cheapest by (3.11) (0.060). The
+  // true place costs 0.095 (> 1.5 × 0.060) but has the lower truncated mean; a third costs
+  // 0.100 with a higher truncated mean too; a fourth stays within rule 3 (0.085); a fifth was
+  // not validated at all.
+  std::vector<Hypothesis> held{Held(0.060, 0.160), Held(0.095, 0.138), Held(0.100, 0.190),
+                               Held(0.085, 0.170), Held(0.300, 0.400, false)};
+  std::vector<Hypothesis> plain = held;
+  const std::vector<bool> counts = JudgeRelativeCost(held, 1.5, true);
+  EXPECT_EQ(counts, (std::vector<bool>{true, false, true, true, true}));
+  EXPECT_TRUE(held[0].validated);
+  EXPECT_FALSE(held[1].validated) << "not validated at this scan, whatever counts";
+  EXPECT_EQ(held[1].verdict, Verdict::kHighCost);
+  EXPECT_EQ(held[2].verdict, Verdict::kHighCost);
+  EXPECT_TRUE(held[3].validated);
+  EXPECT_EQ(held[4].verdict, Verdict::kLowMatchRatio) << "its own rule stays its reason";
+  // Without the truncated mean's word, every rejection counts.
+  EXPECT_EQ(JudgeRelativeCost(plain, 1.5, false), std::vector<bool>(5, true));
+  EXPECT_EQ(plain[1].verdict, Verdict::kHighCost);
+  // None validated: nothing to compare with, nothing changes.
+  std::vector<Hypothesis> none{Held(0.1, 0.2, false), Held(0.5, 0.1, false)};
+  EXPECT_EQ(JudgeRelativeCost(none, 1.5, true), std::vector<bool>(2, true));
+  EXPECT_EQ(none[1].verdict, Verdict::kLowMatchRatio);
+}
+
 LikelihoodTestResult TestOf(int valid_pairs, int match_pairs, double expect_value_m) {
   LikelihoodTestResult test;
   test.valid_pairs = valid_pairs;

@@ -89,9 +89,9 @@ TEST_F(LocaliseCliTest, FromNoPostureTheClassroomIsAmbiguousThenFollowsTheSessio
   ASSERT_TRUE(report.exited && report.exit_code == 0) << report;
   const std::string page = testing::ReadWholeFile(dir_ + "/localise/report.html");
   EXPECT_TRUE(testing::Contains(page, "ambiguous (2 hypotheses)"));
-  EXPECT_TRUE(testing::Contains(
-      page, "scan 0: ambiguous (2) → scan " + std::to_string(confirmed) + ": confirmed (1)"))
+  EXPECT_TRUE(testing::Contains(page, "scan 0: ambiguous (2) → scan "))
       << "the summary table's hypotheses over time";
+  EXPECT_TRUE(testing::Contains(page, "→ scan " + std::to_string(confirmed) + ": confirmed (1)"));
   EXPECT_TRUE(testing::Contains(page, "[discarded ("));
   EXPECT_TRUE(testing::Contains(page, "first confirmed scan</th><td>" + std::to_string(confirmed)));
 }
@@ -147,6 +147,12 @@ TEST_F(LocaliseCliTest, OnASessionsPointMapRule2sPriorIsTheMapsOwnSignatureUnles
   EXPECT_GE(bound, 0.1) << "never below the prior";
   EXPECT_LT(bound, 0.2);
   EXPECT_LT(signature["median_expect_value_m"].get<double>(), bound);
+  ASSERT_EQ(signature["samples"].size(), signature["scans"].get<std::size_t>())
+      << "one [x, y, EV] per scan it learned from";
+  for (const auto& sample : signature["samples"]) {
+    ASSERT_EQ(sample.size(), 3u);
+    EXPECT_GE(sample[2].get<double>(), 0.0);
+  }
   const auto e_max = [&](const std::string& map, const std::string& out,
                          std::vector<std::string> more) {
     std::vector<std::string> words{"localise",      "--log", Classroom("classroom.seq.jsonl"),
@@ -164,6 +170,10 @@ TEST_F(LocaliseCliTest, OnASessionsPointMapRule2sPriorIsTheMapsOwnSignatureUnles
   const auto [used, said] = e_max(map, "signature", {});
   EXPECT_DOUBLE_EQ(used, bound);
   EXPECT_TRUE(testing::Contains(said, "the map's own signature")) << said;
+  EXPECT_TRUE(testing::Contains(said, "rule 2's bound raised where the map's")) << said;
+  const auto [same, unsaid] = e_max(map, "flat", {"--set", "localise.place_bound=false"});
+  EXPECT_DOUBLE_EQ(same, bound);
+  EXPECT_FALSE(testing::Contains(unsaid, "bound raised")) << unsaid;
   EXPECT_DOUBLE_EQ(e_max(map, "prior", {"--set", "localise.map_signature=false"}).first, 0.1);
   // A map copied without its summary: the prior, and the run says so.
   std::filesystem::create_directories(dir_ + "/alone");
@@ -191,6 +201,31 @@ TEST_F(LocaliseCliTest, AMalformedSummaryBesideTheMapIsNamedAndNothingIsWritten)
   EXPECT_TRUE(testing::Contains(run.err, "map/summary.json")) << run;
   EXPECT_TRUE(testing::Contains(run.err, "max_expect_value_m")) << run;
   EXPECT_FALSE(std::filesystem::exists(dir_ + "/run")) << "a run folder was created";
+}
+
+TEST_F(LocaliseCliTest, AMalformedSampleInTheMapSignatureIsNamedAndNothingIsWritten) {
+  std::filesystem::create_directories(dir_ + "/map");
+  const auto session =
+      testing::RunScanloc({"session", "--log", Classroom("classroom.seq.jsonl"), "--initial-pose",
+                           "1.126", "3.112", "0.0463", "--out", dir_ + "/session", "--quiet"},
+                          dir_);
+  ASSERT_TRUE(session.exited && session.exit_code == 0) << session;
+  std::filesystem::copy_file(dir_ + "/session/map.pcd", dir_ + "/map/map.pcd");
+  for (const std::string samples : {"[[1.0, 2.0, 0.05], [1.0, 2.0]]", "[[1.0, 2.0, -0.05]]"}) {
+    testing::WriteText(dir_ + "/map/summary.json",
+                       "{\"map_signature\": {\"learned\": true, \"max_expect_value_m\": 0.12, "
+                       "\"median_expect_value_m\": 0.07, \"samples\": " +
+                           samples + "}}");
+    const auto run =
+        testing::RunScanloc({"localise", "--log", Classroom("classroom.seq.jsonl"), "--point-map",
+                             dir_ + "/map/map.pcd", "--out", dir_ + "/run", "--quiet"},
+                            dir_);
+    ASSERT_TRUE(run.exited) << run;
+    EXPECT_NE(run.exit_code, 0) << samples;
+    EXPECT_TRUE(testing::Contains(run.err, "map/summary.json")) << run;
+    EXPECT_TRUE(testing::Contains(run.err, "samples")) << run;
+    EXPECT_FALSE(std::filesystem::exists(dir_ + "/run")) << "a run folder was created";
+  }
 }
 
 TEST_F(LocaliseCliTest, WithoutAMapItIsRefusedAndNothingIsWritten) {

@@ -177,6 +177,85 @@ TEST(Localiser, ALookAlikeThatCostsMoreAtEveryScanIsDiscardedAndTheRightRoomConf
   EXPECT_LT(control.first_confirmed, 0);
 }
 
+TEST(Localiser, StandingStillItStillTellsTheLookAlikeApartUnlessStillScansAreSkipped) {
+  LineMap western;
+  AddBox(western, 0.0, 0.0, 8.0, 5.0);
+  western.segments.push_back({{4.0, 0.0}, {4.0, 3.5}});
+  // The robot never moves: every step is none (the odometry's noise only). Standing still it
+  // cannot be confirmed (a search after it moved must find no other), but the look-alike goes.
+  const Drive still = DriveThrough(western, {1.0, 1.5, M_PI / 2.0}, 30, 20.0, 0.0, -1, {},
+                                   [](int) { return Pose2D{}; });
+  const LookAlikeRun run = RunBesideALookAlike(DefaultConfig(), still);
+  EXPECT_GE(run.scans_with_both, 1);
+  EXPECT_LE(run.scans_with_both, 12);
+  EXPECT_LT(ErrorM(run.last, still.truth.back()), 0.05);
+  // Skipping the scans of a robot that has not moved leaves both held to the end.
+  LocaliserConfig skipping = DefaultConfig();
+  skipping.localiser.track_while_still = false;
+  const LookAlikeRun control = RunBesideALookAlike(skipping, still);
+  EXPECT_GE(control.scans_with_both, 28);
+}
+
+// The walls as points 2 cm apart; in the south (y < 3.5 m) each lies up to 6 cm off its wall
+// (fixed seed), as walls laid twice a little apart: the map fits the scans taken there worse.
+PointMap RoughInTheSouth(const LineMap& room) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> off(-0.06, 0.06);
+  std::vector<Eigen::Vector2d> points;
+  for (const Segment& s : room.segments) {
+    const Eigen::Vector2d along = (s.b - s.a).normalized();
+    const Eigen::Vector2d normal(-along.y(), along.x());
+    for (double t = 0.0; t <= s.Length(); t += 0.02) {
+      const Eigen::Vector2d p = s.a + t * along;
+      points.push_back(p.y() < 3.5 ? Eigen::Vector2d(p + off(rng) * normal) : p);
+    }
+  }
+  PointMap map;
+  map.Restore(points, std::vector<double>(points.size(), 0.02));
+  return map;
+}
+
+TEST(Localiser, WhereTheMapsOwnSampledScansFitWorseRule2sBoundIsRaisedThereAndOnlyThere) {
+  // The classroom with a desk and a cupboard (no turn of it looks like another), rough in the
+  // south, where the robot drives.
+  LineMap room = testing::Classroom();
+  room.segments.push_back({{2.4, 0.6}, {3.6, 0.6}});
+  AddBox(room, 0.3, 5.5, 1.5, 6.7);
+  const Drive drive = DriveThrough(room, {1.5, 2.0, 0.3}, 30, 20.0);
+  LocaliserConfig config = DefaultConfig();
+  config.initial_pose = drive.truth.front();
+  config.session.learned_max_expect_value = false;  // the bound as given, to see it raised
+  config.localisation.validation.max_expect_value_m = 0.035;
+  const auto run = [&](const PlaceBound& bound) {
+    LocaliserConfig c = config;
+    c.place_bound = bound;
+    Localiser localiser(c, {}, LineMap{}, RoughInTheSouth(room));
+    int validated = 0;
+    double max_bound = 0.0;
+    for (std::size_t i = 0; i < drive.iterations.size(); ++i) {
+      const IterationRecord r = localiser.Process(drive.iterations[i]);
+      validated += r.validated && ErrorM(r.T_world_robot, drive.truth[i]) < 0.05;
+      max_bound = std::max(max_bound, r.max_expect_value_m);
+    }
+    return std::make_pair(validated, max_bound);
+  };
+  const auto [prior_only, prior_bound] = run(PlaceBound{});
+  EXPECT_LE(prior_only, 5) << "the prior alone must reject most of these scans";
+  EXPECT_DOUBLE_EQ(prior_bound, 0.035);
+  // The map's samples: in the south they fit 0.05 m worse than the map's median.
+  std::vector<MapSignatureSample> samples;
+  for (int k = 0; k < 10; ++k) {
+    samples.push_back({0.5 + 0.5 * k, 2.0, 0.11});
+    samples.push_back({0.5 + 0.5 * k, 5.0, 0.06});
+  }
+  const auto [raised, raised_bound] = run(PlaceBound(samples, 0.06));
+  EXPECT_GE(raised, 25) << "the raised bound accepts the true posture";
+  EXPECT_NEAR(raised_bound, 0.035 + 0.05, 1e-12);
+  // The same samples with the north worse raise nothing where the robot is.
+  for (MapSignatureSample& s : samples) s.expect_value_m = s.y_m < 3.5 ? 0.06 : 0.11;
+  EXPECT_LE(run(PlaceBound(samples, 0.06)).first, 5);
+}
+
 TEST(Localiser, FindsItselfOnTheClassroomFromNoInitialPostureWithinFiveCentimetres) {
   LineMap world = testing::Classroom();
   world.segments.push_back({{2.4, 0.6}, {3.6, 0.6}});

@@ -338,6 +338,14 @@ void VisitLocalise(C& c, V& v) {
   v("localise.map_signature", l.map_signature,
     "rule 2's prior E_max is the point map's own signature (summary.json beside the PCD), when "
     "a session wrote one");
+  v("localise.place_bound", l.place_bound,
+    "... raised at each place by how much worse than the map's median its nearest sampled "
+    "scans fit");
+  v("localise.track_while_still", l.track_while_still,
+    "until a posture is confirmed, every scan is localised, even while the robot stands still");
+  v("localise.relative_cost_needs_truncated_mean", l.relative_cost_needs_truncated_mean,
+    "a hypothesis rule 3 rejects against the cheapest held one counts towards its discarding "
+    "only when its truncated mean distance is above that one's too");
   v("localise.max_hypotheses", l.max_hypotheses, Bounds{1, 1000}, "hypotheses held at most");
   v("localise.same_posture_m", l.same_posture_m, Bounds{0, 1e3},
     "hypotheses closer than this and same_posture_rad are one, m");

@@ -73,6 +73,15 @@ void AddLocalisationSummary(const SessionCounts& c, nlohmann::json& summary) {
 }
 
 // Closure edges the graph still holds active after its last solve.
+// The map signature's sampled scans, [x_m, y_m, expect_value_m] each: the per-place bound's
+// evidence (`scanloc localise`, session/place_bound.hpp).
+nlohmann::json SignatureSamples(const MapSignature& signature) {
+  nlohmann::json samples = nlohmann::json::array();
+  for (const MapSignatureSample& s : signature.samples)
+    samples.push_back({s.x_m, s.y_m, s.expect_value_m});
+  return samples;
+}
+
 std::size_t ClosuresKept(const PoseGraph& graph) {
   std::size_t kept = 0;
   for (const PoseGraphEdge& edge : graph.edges())
@@ -251,7 +260,8 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
     summary["map_signature"] = {{"max_expect_value_m", signature->max_expect_value_m},
                                 {"median_expect_value_m", signature->median_expect_value_m},
                                 {"scans", signature->scans},
-                                {"learned", signature->learned}};
+                                {"learned", signature->learned},
+                                {"samples", SignatureSamples(*signature)}};
     summary["map_signature_wall_s"] = signature->wall_s;  // a timing, beside the others
   }
   if (run.session && run.session->pose_graph()) {

@@ -74,11 +74,17 @@ bool Preferred(const CandidateAssessment& a, const CandidateAssessment& b,
 }
 
 CandidateRanking RankCandidates(const std::vector<LikelihoodTestResult>& tests,
-                                const ValidationOptions& options) {
+                                const ValidationOptions& options,
+                                const std::vector<double>& max_expect_values_m) {
   options.Validate();
+  if (!max_expect_values_m.empty() && max_expect_values_m.size() != tests.size())
+    throw std::invalid_argument("RankCandidates: one E_max per test, or none");
   CandidateRanking ranking;
   double best_cost = std::numeric_limits<double>::infinity();
-  for (const auto& test : tests) {
+  for (std::size_t i = 0; i < tests.size(); ++i) {
+    const LikelihoodTestResult& test = tests[i];
+    const double own = max_expect_values_m.empty() ? 0.0 : max_expect_values_m[i];
+    const double max_expect_value_m = own > 0.0 ? own : options.max_expect_value_m;
     CandidateAssessment c;
     c.test = test;
     c.cost = LikelihoodCost(test, options.alpha_m);
@@ -86,7 +92,7 @@ CandidateRanking RankCandidates(const std::vector<LikelihoodTestResult>& tests,
       c.verdict = Verdict::kNoValidPairs;
     } else if (!(test.MatchRatio() > options.min_match_ratio)) {  // rule 1
       c.verdict = Verdict::kLowMatchRatio;
-    } else if (!(test.expect_value_m < options.max_expect_value_m)) {  // rule 2
+    } else if (!(test.expect_value_m < max_expect_value_m)) {  // rule 2
       c.verdict = Verdict::kHighExpectValue;
     } else {
       best_cost = std::min(best_cost, c.cost);

@@ -68,6 +68,25 @@ CostComparison CompareCosts(const Hypothesis& costlier, const Hypothesis& cheape
   return out;
 }
 
+std::vector<bool> JudgeRelativeCost(std::vector<Hypothesis>& held, double max_cost_ratio,
+                                    bool needs_truncated_mean) {
+  const Hypothesis* cheapest = nullptr;
+  for (const Hypothesis& h : held)
+    if (h.validated && (!cheapest || h.cost < cheapest->cost)) cheapest = &h;
+  std::vector<bool> counts(held.size(), true);
+  if (!cheapest) return counts;
+  const double best_cost = cheapest->cost;
+  const double best_truncated_mean_m = cheapest->truncated_mean_m;
+  for (std::size_t i = 0; i < held.size(); ++i) {
+    Hypothesis& h = held[i];
+    if (!h.validated || !(h.cost > max_cost_ratio * best_cost)) continue;
+    h.validated = false;
+    h.verdict = Verdict::kHighCost;
+    counts[i] = !(needs_truncated_mean && h.truncated_mean_m <= best_truncated_mean_m);
+  }
+  return counts;
+}
+
 namespace {
 
 struct CostsSince {

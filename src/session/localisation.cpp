@@ -14,9 +14,13 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 // Ranks `ranked` by the rules on their tests, in place; returns the index of the best valid one.
 int RankByRules(std::vector<RankedCandidate>& ranked, const ValidationOptions& validation) {
   std::vector<LikelihoodTestResult> tests;
+  std::vector<double> bounds;  // each candidate's own E_max, when one has one
   tests.reserve(ranked.size());
   for (const RankedCandidate& r : ranked) tests.push_back(r.test);
-  const CandidateRanking ranking = RankCandidates(tests, validation);
+  if (std::any_of(ranked.begin(), ranked.end(),
+                  [](const RankedCandidate& r) { return r.candidate.max_expect_value_m > 0.0; }))
+    for (const RankedCandidate& r : ranked) bounds.push_back(r.candidate.max_expect_value_m);
+  const CandidateRanking ranking = RankCandidates(tests, validation, bounds);
   for (std::size_t i = 0; i < ranked.size(); ++i) {
     ranked[i].cost = ranking.candidates[i].cost;
     ranked[i].verdict = ranking.candidates[i].verdict;

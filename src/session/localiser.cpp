@@ -120,10 +120,14 @@ IterationRecord Localiser::Process(const Iteration& iteration) {
     const Pose2D increment = Between(*last_odometry_, *iteration.odometry);
     for (Hypothesis& h : hypotheses_) h.T_world_robot = h.T_world_robot * increment;
   }
-  if (!hypotheses_.empty()) record.prediction = hypotheses_.front().T_world_robot;
+  if (!hypotheses_.empty()) {
+    record.prediction = hypotheses_.front().T_world_robot;
+    record.max_expect_value_m = BoundAt(record.prediction);
+  }
   const bool search = SearchDue(iteration);
-  if (!hypotheses_.empty() &&
-      (search || MovedSince(last_localised_odometry_, iteration, config_.session))) {
+  const bool still_unconfirmed = !confirmed_ && config_.localiser.track_while_still;
+  if (!hypotheses_.empty() && (search || still_unconfirmed ||
+                               MovedSince(last_localised_odometry_, iteration, config_.session))) {
     Track(record, iteration);
   } else if (!search) {
     record.skipped = true;
@@ -162,9 +166,10 @@ void Localiser::Search(IterationRecord& record, const Iteration& iteration) {
   record.search =
       WideSearch(View(), scan, *record.search_window, config_.localiser.search, &search_field_);
   std::vector<Candidate> candidates;
-  for (std::size_t i = 0; i < record.search->candidates.size(); ++i)
-    candidates.push_back({mounting_.RobotPose(record.search->candidates[i].T_world_laser),
-                          "search" + std::to_string(i)});
+  for (std::size_t i = 0; i < record.search->candidates.size(); ++i) {
+    const Pose2D T_world_robot = mounting_.RobotPose(record.search->candidates[i].T_world_laser);
+    candidates.push_back({T_world_robot, "search" + std::to_string(i), BoundAt(T_world_robot)});
+  }
   if (candidates.empty()) {
     record.verdict = Verdict::kNoValidPairs;
     return;
@@ -193,8 +198,9 @@ void Localiser::Track(IterationRecord& record, const Iteration& iteration) {
                            config_.session.heading_candidates_min_turn_rad;
   std::vector<LocalisationResult> results;
   for (Hypothesis& h : hypotheses_) {
-    const auto candidates =
+    auto candidates =
         PredictionCandidates(h.T_world_robot, {}, turning, mounting_, config_.session);
+    for (Candidate& c : candidates) c.max_expect_value_m = BoundAt(h.T_world_robot);
     results.push_back(Localise(View(), iteration.scan, candidates, mounting_, in_force_,
                                PredictionRefinePolicy(config_.session),
                                config_.session.max_refined_candidates));
@@ -203,15 +209,14 @@ void Localiser::Track(IterationRecord& record, const Iteration& iteration) {
       TakeRefinement(h, *kept, count_, in_force_);
     h.validated = results.back().validated();
   }
-  double best_cost = HUGE_VAL;
-  for (const Hypothesis& h : hypotheses_)
-    if (h.validated) best_cost = std::min(best_cost, h.cost);
-  for (Hypothesis& h : hypotheses_) {
-    if (h.validated && h.cost > config_.localisation.validation.max_cost_ratio * best_cost) {
-      h.validated = false;
-      h.verdict = Verdict::kHighCost;
-    }
-    Count(h);
+  const std::vector<bool> counts =
+      JudgeRelativeCost(hypotheses_, config_.localisation.validation.max_cost_ratio,
+                        config_.localiser.relative_cost_needs_truncated_mean);
+  for (std::size_t i = 0; i < hypotheses_.size(); ++i) {
+    if (counts[i])
+      Count(hypotheses_[i]);
+    else
+      hypotheses_[i].confirmed_in_row = 0;  // not validated at this scan, but not a failure
   }
   std::vector<std::size_t> order(hypotheses_.size());
   std::iota(order.begin(), order.end(), 0);
@@ -291,6 +296,13 @@ LocalisationOptions Localiser::BoundedOptions(IterationRecord& record) const {
     options.validation.max_expect_value_m = record.signature_expect_value_m;
   record.max_expect_value_m = options.validation.max_expect_value_m;
   return options;
+}
+
+// Rule 2's E_max at a posture: BoundedOptions' with the prior raised by the place's excess.
+double Localiser::BoundAt(const Pose2D& T_world_robot) const {
+  const double prior =
+      config_.place_bound.At(T_world_robot, config_.localisation.validation.max_expect_value_m);
+  return config_.session.learned_max_expect_value ? signature_.ExpectValueBound(prior) : prior;
 }
 
 // Why `h` goes: another held hypothesis cost less at the scans both were localised at, beyond

@@ -31,6 +31,7 @@ MapSignature MeasureMapSignature(const MapView& map, const LaidScanSample& sampl
   if (learning.window > 0)
     learning.window = std::max(learning.min_samples, static_cast<int>(sample.entries().size()));
   LaserSignature signature(learning);
+  MapSignature out;
   std::vector<double> expect_values_m;
   for (const LaidScanSample::Entry& e : sample.entries()) {
     const Pose2D posture =
@@ -38,10 +39,12 @@ MapSignature MeasureMapSignature(const MapView& map, const LaidScanSample& sampl
     const LocalisationResult result =
         Localise(map, e.scan, {{posture, "laid"}}, mounting, options, RefinePolicy::kAll);
     if (result.refined.empty() || result.refined.front().test.valid_pairs == 0) continue;
-    signature.Add(result.refined.front().test);
-    expect_values_m.push_back(result.refined.front().test.expect_value_m);
+    const RankedCandidate& refined = result.refined.front();
+    signature.Add(refined.test);
+    expect_values_m.push_back(refined.test.expect_value_m);
+    out.samples.push_back(
+        {refined.T_world_robot.x_m, refined.T_world_robot.y_m, refined.test.expect_value_m});
   }
-  MapSignature out;
   out.scans = expect_values_m.size();
   out.learned = signature.learned();
   out.max_expect_value_m = signature.ExpectValueBound(options.validation.max_expect_value_m);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "scanloc/geometry/laser_scan.hpp"
+#include "scanloc/session/map_signature.hpp"
 
 namespace scanloc {
 
@@ -13,10 +14,11 @@ namespace scanloc {
 // the file when it cannot be read, is not JSON, or its mounting is not three finite numbers.
 std::optional<LaserMounting> ReadRunMounting(const std::string& summary_path);
 
-// The map's own rule-2 bound, m (summary.json's map_signature.max_expect_value_m, written by the
-// session that built the map: session/map_signature.hpp). Nothing when the file does not exist
-// or holds no signature learned from enough scans. Throws std::runtime_error naming the file when
-// it cannot be read, is not JSON, or the bound is not a positive number.
-std::optional<double> ReadMapSignatureBound(const std::string& summary_path);
+// The map's own signature (summary.json's map_signature, written by the session that built the
+// map: session/map_signature.hpp): its rule-2 bound, median EV and sampled scans (none in a file
+// written before they were kept). Nothing when the file does not exist or holds no signature
+// learned from enough scans. Throws std::runtime_error naming the file when it cannot be read, is
+// not JSON, the bound is not a positive number or a sample is not three finite numbers.
+std::optional<MapSignature> ReadMapSignature(const std::string& summary_path);
 
 }  // namespace scanloc

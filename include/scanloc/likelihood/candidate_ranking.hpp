@@ -52,7 +52,9 @@ double LikelihoodCost(const LikelihoodTestResult& test, double alpha_m);
 bool Preferred(const CandidateAssessment& a, const CandidateAssessment& b,
                const ValidationOptions& options);
 
+// `max_expect_values_m`, when given, holds rule 2's E_max of each test (0: the options' bound).
 CandidateRanking RankCandidates(const std::vector<LikelihoodTestResult>& tests,
-                                const ValidationOptions& options = {});
+                                const ValidationOptions& options = {},
+                                const std::vector<double>& max_expect_values_m = {});
 
 }  // namespace scanloc

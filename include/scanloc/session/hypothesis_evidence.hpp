@@ -48,6 +48,16 @@ struct CostComparison {
 CostComparison CompareCosts(const Hypothesis& costlier, const Hypothesis& cheaper, int min_scans,
                             double min_excess_ratio);
 
+// Rule 3 among the held hypotheses at one scan: each validated one whose (3.11) cost exceeds
+// max_cost_ratio × the cheapest validated one's is no longer validated (verdict kHighCost). The
+// result says, per hypothesis, whether that scan counts towards its discarding: every scan but
+// one whose rejection is excused, which is one where `needs_truncated_mean` holds and its truncated
+// mean distance is no higher than the cheapest's (on Intel's corridors a posture 1–2.5 m off
+// matches fewer beams more tightly and costs less by (3.11) at many scans, while the true one has
+// the lower truncated mean at nearly every scan: docs/BENCHMARKS.md).
+std::vector<bool> JudgeRelativeCost(std::vector<Hypothesis>& held, double max_cost_ratio,
+                                    bool needs_truncated_mean);
+
 // The order of held hypotheses, best first (the first is the output). One validated at the
 // last scan comes first. Then, when `since` is a scan from which every hypothesis was costed at
 // two scans or more (CommonSince), the one validated at more of those scans, then the one whose

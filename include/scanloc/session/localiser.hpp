@@ -16,6 +16,7 @@
 
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/maps/point_map.hpp"
+#include "scanloc/session/place_bound.hpp"
 #include "scanloc/session/scan_processor.hpp"
 #include "scanloc/session/session.hpp"
 
@@ -43,6 +44,20 @@ struct LocaliserOptions {
   // Rule 2's prior E_max on a point map a session wrote is that map's own signature (the bound
   // in the summary.json beside it, map_signature.hpp), until the localiser's signature learned.
   bool map_signature = true;
+  // ... and rule 2's bound at each place is raised by how much worse than the map's median its
+  // nearest sampled scans fit (place_bound.hpp), when the summary holds them.
+  bool place_bound = true;
+  // Until a posture is confirmed every scan is localised, even while the robot stands still:
+  // each scan's evidence tells held hypotheses apart (hypothesis_evidence.hpp), where skipping
+  // them would leave a robot that stopped unconfirmed until it moves again.
+  bool track_while_still = true;
+  // A hypothesis that passes the rules alone but costs (3.11) more than rule 3 allows against
+  // the cheapest held one is not validated at that scan. It counts towards its discarding
+  // (drop_after_unconfirmed) only when its truncated mean distance is above that one's too: in a
+  // corridor a posture a metre or two off can match fewer beams more tightly and cost less by
+  // (3.11) at many scans, while the true one has the lower truncated mean at nearly every scan.
+  // Off: it always counts.
+  bool relative_cost_needs_truncated_mean = true;
   int max_hypotheses = 8;  // the best by confirmations, then cost, are kept
   // Hypotheses closer than both of these are one (the better kept).
   double same_posture_m = 0.3;
@@ -58,6 +73,7 @@ struct LocaliserConfig {
   LocalisationOptions localisation;
   LocaliserOptions localiser;
   std::optional<Pose2D> initial_pose;  // T_world_robot when known: the first hypothesis
+  PlaceBound place_bound;              // rule 2's bound raised where the map fits worse
 };
 
 class Localiser : public ScanProcessor {
@@ -81,6 +97,7 @@ class Localiser : public ScanProcessor {
   std::string OutCosted(const Hypothesis& h) const;
   bool Costed(const Hypothesis& h) const;
   LocalisationOptions BoundedOptions(IterationRecord& record) const;
+  double BoundAt(const Pose2D& T_world_robot) const;
   void Conclude(IterationRecord& record);
 
   LocaliserConfig config_;

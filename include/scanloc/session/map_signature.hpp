@@ -44,12 +44,19 @@ class LaidScanSample {
   std::vector<Entry> entries_;
 };
 
+// One sampled scan as the finished map judged it: where its refinement put it, and its EV.
+struct MapSignatureSample {
+  double x_m = 0.0, y_m = 0.0;
+  double expect_value_m = 0.0;
+};
+
 struct MapSignature {
   double max_expect_value_m = 0.0;  // the learned bound (never below the prior)
   double median_expect_value_m = 0.0;
   std::size_t scans = 0;  // the sampled scans whose refinement had valid pairs
   bool learned = false;   // enough scans to learn from (else the bound is the prior)
   double wall_s = 0.0;    // what measuring it took
+  std::vector<MapSignatureSample> samples;  // the scans it learned from, in the session's order
 };
 
 // Refines each sampled scan from its posture (`corrected[index]` when loop closure moved it) on
