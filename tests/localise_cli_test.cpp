@@ -34,6 +34,7 @@ class LocaliseCliTest : public testing::TemporaryDirTest {
   std::string Classroom(const std::string& file) const {
     return std::string(SCANLOC_SOURCE_DIR) + "/datasets/classroom/" + file;
   }
+  void CopySessionMapWithoutItsSummary();
 };
 
 TEST_F(LocaliseCliTest, FromNoPostureTheClassroomIsAmbiguousThenFollowsTheSessionWithin2cm) {
@@ -183,7 +184,8 @@ TEST_F(LocaliseCliTest, OnASessionsPointMapRule2sPriorIsTheMapsOwnSignatureUnles
   EXPECT_TRUE(testing::Contains(told, "no map signature in")) << told;
 }
 
-TEST_F(LocaliseCliTest, AMalformedSummaryBesideTheMapIsNamedAndNothingIsWritten) {
+// A classroom session's point map copied to map/map.pcd, its summary left behind.
+void LocaliseCliTest::CopySessionMapWithoutItsSummary() {
   std::filesystem::create_directories(dir_ + "/map");
   const auto session =
       testing::RunScanloc({"session", "--log", Classroom("classroom.seq.jsonl"), "--initial-pose",
@@ -191,6 +193,10 @@ TEST_F(LocaliseCliTest, AMalformedSummaryBesideTheMapIsNamedAndNothingIsWritten)
                           dir_);
   ASSERT_TRUE(session.exited && session.exit_code == 0) << session;
   std::filesystem::copy_file(dir_ + "/session/map.pcd", dir_ + "/map/map.pcd");
+}
+
+TEST_F(LocaliseCliTest, AMalformedSummaryBesideTheMapIsNamedAndNothingIsWritten) {
+  ASSERT_NO_FATAL_FAILURE(CopySessionMapWithoutItsSummary());
   testing::WriteText(dir_ + "/map/summary.json", "{\"map_signature\": {\"learned\": true}}");
   const auto run =
       testing::RunScanloc({"localise", "--log", Classroom("classroom.seq.jsonl"), "--point-map",
@@ -204,13 +210,7 @@ TEST_F(LocaliseCliTest, AMalformedSummaryBesideTheMapIsNamedAndNothingIsWritten)
 }
 
 TEST_F(LocaliseCliTest, AMalformedSampleInTheMapSignatureIsNamedAndNothingIsWritten) {
-  std::filesystem::create_directories(dir_ + "/map");
-  const auto session =
-      testing::RunScanloc({"session", "--log", Classroom("classroom.seq.jsonl"), "--initial-pose",
-                           "1.126", "3.112", "0.0463", "--out", dir_ + "/session", "--quiet"},
-                          dir_);
-  ASSERT_TRUE(session.exited && session.exit_code == 0) << session;
-  std::filesystem::copy_file(dir_ + "/session/map.pcd", dir_ + "/map/map.pcd");
+  ASSERT_NO_FATAL_FAILURE(CopySessionMapWithoutItsSummary());
   for (const std::string samples : {"[[1.0, 2.0, 0.05], [1.0, 2.0]]", "[[1.0, 2.0, -0.05]]"}) {
     testing::WriteText(dir_ + "/map/summary.json",
                        "{\"map_signature\": {\"learned\": true, \"max_expect_value_m\": 0.12, "

@@ -200,7 +200,8 @@ void Localiser::Track(IterationRecord& record, const Iteration& iteration) {
   for (Hypothesis& h : hypotheses_) {
     auto candidates =
         PredictionCandidates(h.T_world_robot, {}, turning, mounting_, config_.session);
-    for (Candidate& c : candidates) c.max_expect_value_m = BoundAt(h.T_world_robot);
+    const double bound_m = BoundAt(h.T_world_robot);  // one place: one bound for all
+    for (Candidate& c : candidates) c.max_expect_value_m = bound_m;
     results.push_back(Localise(View(), iteration.scan, candidates, mounting_, in_force_,
                                PredictionRefinePolicy(config_.session),
                                config_.session.max_refined_candidates));
