@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <random>
 
 #include "scanloc/maps/line_map.hpp"
@@ -228,6 +229,20 @@ TEST(CarvingOracleTest, SearchesAndSimulatedScansOfACarvedMapSeeExactlyItsLivePo
 
 TEST_F(CarvingTest, NegativeMarginIsRefused) {
   EXPECT_THROW(map_.CarveFreeSpace(scan_, centre_, -0.1, 0.0), std::invalid_argument);
+}
+
+TEST_F(CarvingTest, PointsBelowTheFirstIndexAreLeftAsTheyAre) {
+  map_.InsertScan(scan_, centre_);
+  const std::size_t walls = map_.live_size();
+  ASSERT_TRUE(map_.Insert(Eigen::Vector2d(7.0, 4.0), 0.05));  // index `walls`
+  const auto after_it = static_cast<std::uint32_t>(walls + 1);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_EQ(map_.CarveFreeSpace(scan_, centre_, kMargin, kMarginPerM, after_it), 0u);
+  EXPECT_EQ(map_.live_size(), walls + 1);  // no miss counted either: two more remove it
+  const auto from_it = static_cast<std::uint32_t>(walls);
+  EXPECT_EQ(map_.CarveFreeSpace(scan_, centre_, kMargin, kMarginPerM, from_it), 0u);
+  EXPECT_EQ(map_.CarveFreeSpace(scan_, centre_, kMargin, kMarginPerM, from_it), 1u);
+  EXPECT_FALSE(map_.alive(walls));
 }
 
 }  // namespace

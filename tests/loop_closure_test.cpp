@@ -302,5 +302,37 @@ TEST(LoopCloser, AMapRenderedWithinAPathHoldsOnlyTheNewestNodesWalls) {
   EXPECT_GT(lowest_y(newest), 3.9);
 }
 
+TEST(LoopCloser, TheFinalRenderCarvesWhatOnlyTheLastNodesSawWhereEarlierNodesSawFreeSpace) {
+  // A person steps into the east corridor at (21.2, 11) as the lap's last leg comes up it: only
+  // the last nodes see them, and every scan carves only what was laid before it, so the
+  // session's own render keeps them. The first lap saw the block's wall behind that spot.
+  const LineMap world = testing::RingBuilding();
+  Lap lap = DriveRing(world);
+  LineMap with_person = world;
+  with_person.segments.push_back({{21.05, 10.85}, {21.35, 10.85}});
+  with_person.segments.push_back({{21.05, 10.85}, {21.05, 11.15}});
+  const std::size_t last_leg = 8;  // the last 3.2 m, up to (22, 10)
+  std::mt19937 random(12);
+  for (std::size_t i = lap.truth.size() - last_leg; i < lap.truth.size(); ++i)
+    lap.scans[i] = SimulateLaser(with_person, lap.truth[i], testing::RingBuildingLaser(), random);
+  LoopCloser closer(Enabled(), LaserMounting{});
+  for (std::size_t i = 0; i < lap.truth.size(); ++i)
+    closer.AddNode(i, lap.scans[i], lap.truth[i], std::nullopt);
+  const Eigen::Vector2d person(21.2, 11.0);
+  auto near_person = [&](const PointMap& map) { return map.RadiusSearch(person, 0.3).size(); };
+  MapExtensionOptions extension;
+  const PointMap online = closer.Render(PointMapOptions{}, extension);
+  const PointMap saved = closer.Render(PointMapOptions{}, extension, 0, true);
+  EXPECT_GE(near_person(online), 3u) << "the last leg must have laid the person";
+  EXPECT_EQ(near_person(saved), 0u);
+  // The walls stay: the second pass removes few points besides the person's.
+  EXPECT_GT(saved.live_size(), online.live_size() * 97 / 100);
+  EXPECT_LE(saved.live_size(), online.live_size() - near_person(online));
+  // The wall behind the person, seen by every pass, is there.
+  EXPECT_FALSE(saved.RadiusSearch({20.0, 11.0}, 0.1).empty());
+  extension.carve_with_earlier_scans = false;
+  EXPECT_EQ(closer.Render(PointMapOptions{}, extension, 0, true).live_size(), online.live_size());
+}
+
 }  // namespace
 }  // namespace scanloc

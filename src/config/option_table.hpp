@@ -200,6 +200,10 @@ void VisitSession(C& c, V& v) {
     "0: no carving");
   v("session.free_space_margin_per_m", s.extension.free_space_margin_per_m, Bounds{0, 1},
     "carving: the margin's growth per metre of range r");
+  v("session.carve_with_earlier_scans", s.extension.carve_with_earlier_scans,
+    "carving: the saved map is carved again, each scan against the points laid after it (with "
+    "loop closure on), so that what only the last scans saw does not stay where earlier ones saw "
+    "free space");
   v("session.initial_pose", s.initial_pose, kPosition, kHeading,
     "T_world_robot of the first iteration, [x m, y m, yaw rad]");
 }

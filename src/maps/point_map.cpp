@@ -313,7 +313,8 @@ std::size_t PointMap::InsertScan(const LaserScan& scan, const Pose2D& T_world_la
 }
 
 std::size_t PointMap::CarveFreeSpace(const LaserScan& scan, const Pose2D& T_world_laser,
-                                     double margin_m, double margin_per_m) {
+                                     double margin_m, double margin_per_m,
+                                     std::uint32_t first_index) {
   scan.CheckConsistent();
   if (!(margin_m >= 0.0)) throw std::invalid_argument("CarveFreeSpace: margin_m must be >= 0");
   if (!(margin_per_m >= 0.0) || !(margin_per_m < 1.0))
@@ -322,7 +323,7 @@ std::size_t PointMap::CarveFreeSpace(const LaserScan& scan, const Pose2D& T_worl
   double reach_m = 0.0;
   for (std::size_t k = 0; k < n; ++k)
     if (scan.IsValid(k)) reach_m = std::max(reach_m, scan.ranges_m[k]);
-  if (reach_m <= margin_m || empty()) return 0;
+  if (reach_m <= margin_m || empty() || first_index >= size()) return 0;
   // The nearest return among a beam and its two neighbours: a point is only seen through when
   // all three passed it, so that points beside a depth jump are not carved by discretisation.
   std::vector<double> nearest(n, -1.0);
@@ -340,7 +341,7 @@ std::size_t PointMap::CarveFreeSpace(const LaserScan& scan, const Pose2D& T_worl
   RadiusSearchInBlocks(
       T_world_laser.Translation(), reach_m,
       [&carved](std::int64_t ix, std::int64_t iy) { return carved.MayHoldCarved(ix, iy); },
-      candidates);
+      candidates, first_index);
   for (const auto& [index, unused] : candidates) {
     const Eigen::Vector2d q = T_laser_world(s.points[index]);
     const double range = q.norm();
@@ -445,7 +446,7 @@ const std::vector<std::uint32_t>* PointMap::Block(std::int64_t ix, std::int64_t 
 void PointMap::RadiusSearchInBlocks(
     const Eigen::Vector2d& centre, double radius_m,
     const std::function<bool(std::int64_t, std::int64_t)>& keep_block,
-    std::vector<std::pair<std::uint32_t, double>>& found) const {
+    std::vector<std::pair<std::uint32_t, double>>& found, std::uint32_t first_index) const {
   found.clear();
   if (empty() || !(radius_m > 0.0)) return;
   const Storage& s = *storage_;
@@ -458,8 +459,13 @@ void PointMap::RadiusSearchInBlocks(
   if (box.x1 < box.x0 || box.y1 < box.y0) return;
   const double radius2 = radius_m * radius_m;
   const auto search = [&](const Storage::Block& block) {
+    if (block.slots.empty() || block.slots.back() < first_index) return;
     if (!keep_block(block.ix, block.iy)) return;
-    for (const std::uint32_t i : block.slots) {
+    const auto from = first_index == 0 ? block.slots.begin()
+                                       : std::lower_bound(block.slots.begin(),
+                                                          block.slots.end(), first_index);
+    for (auto slot = from; slot != block.slots.end(); ++slot) {
+      const std::uint32_t i = *slot;
       if (!s.alive[i]) continue;
       const double d2 = (s.points[i] - centre).squaredNorm();
       if (d2 < radius2) found.emplace_back(i, d2);

@@ -387,11 +387,21 @@ void LoopCloser::SetPriorMap(const PointMap& map) {
 }
 
 PointMap LoopCloser::Render(const PointMapOptions& map_options,
-                            const MapExtensionOptions& extension, std::size_t first_node) const {
+                            const MapExtensionOptions& extension, std::size_t first_node,
+                            bool final) const {
   PointMap map(map_options);
   map.Restore(prior_.points, prior_.spacings_m, prior_.normals);
-  for (std::size_t i = first_node; i < nodes_.size(); ++i)
+  std::vector<std::uint32_t> laid_after(nodes_.size(), 0);  // the map's size after each node
+  for (std::size_t i = first_node; i < nodes_.size(); ++i) {
     ExtendMap(map, nodes_[i].scan, mounting_.LaserPose(graph_.nodes()[i]), extension);
+    laid_after[i] = static_cast<std::uint32_t>(map.size());
+  }
+  if (!final || !extension.carve_with_earlier_scans || !(extension.free_space_margin_m > 0.0))
+    return map;
+  for (std::size_t i = first_node; i + 1 < nodes_.size(); ++i)
+    map.CarveFreeSpace(nodes_[i].scan, mounting_.LaserPose(graph_.nodes()[i]),
+                       extension.free_space_margin_m, extension.free_space_margin_per_m,
+                       laid_after[i]);
   return map;
 }
 

@@ -388,11 +388,12 @@ void Session::RenderTracked() {
 }
 
 // Closures that joined the graph unsolved are solved; the map is rendered from every node when
-// tracking kept only the newest, or when that solve moved a node.
+// tracking kept only the newest, when that solve moved a node, or to be carved by earlier scans.
 void Session::Finish() {
   if (options_.loop_closure.enabled) {
     const bool moved = loop_.Finish();
-    if (Tracking() || moved) point_map_ = loop_.Render(point_map_.options(), options_.extension);
+    if (Tracking() || moved || options_.extension.carve_with_earlier_scans)
+      point_map_ = loop_.Render(point_map_.options(), options_.extension, 0, true);
   }
   if (!point_map_.empty())
     map_signature_ = MeasureMapSignature(View(), laid_, CorrectedPostures(), mounting_,

@@ -67,8 +67,10 @@ class PointMap {
   // the map to occlude it. Beams without an echo carve nothing (glass, black surfaces). Returns
   // the points removed. The margins have no default here: SessionOptions::free_space_margin_m
   // and free_space_margin_per_m are their one declaration.
+  // Points with an index below first_index are left as they are: a scan carving the points laid
+  // after it (LoopCloser::Render's second pass) passes the map's size after its own insertion.
   std::size_t CarveFreeSpace(const LaserScan& scan, const Pose2D& T_world_laser, double margin_m,
-                             double margin_per_m);
+                             double margin_per_m, std::uint32_t first_index = 0);
 
   // Slots: indices 0 … size()−1 address points, some of which may have been removed by carving
   // (alive(i) false): they are in no search result and no saved map.
@@ -107,11 +109,14 @@ class PointMap {
   double block_margin_m() const { return MaxIndexDisplacement(); }
   // The blocks spanned by every point ever added.
   BlockRange block_range() const;
-  // RadiusSearch's points that lie in the blocks keep_block(ix, iy) accepts (the carving keeps
-  // the blocks a scan saw through), in no particular order.
+  // RadiusSearch's points with an index from first_index on that lie in the blocks
+  // keep_block(ix, iy) accepts (the carving keeps the blocks a scan saw through), in no
+  // particular order. A block's slots are in the order the points were added: a block holding
+  // none from first_index on is skipped whole.
   void RadiusSearchInBlocks(const Eigen::Vector2d& centre, double radius_m,
                             const std::function<bool(std::int64_t, std::int64_t)>& keep_block,
-                            std::vector<std::pair<std::uint32_t, double>>& found) const;
+                            std::vector<std::pair<std::uint32_t, double>>& found,
+                            std::uint32_t first_index = 0) const;
 
  private:
   // How far a cell mean may lie from the first sample the k-d tree indexes (one cell diagonal).

@@ -139,9 +139,10 @@ class LoopCloser {
   // they were (the nodes' scans then carve and extend it as the session did). None by default.
   void SetPriorMap(const PointMap& map);
   // The map rendered from the nodes from `first_node` on (every node by default) at their current
-  // postures, over the prior map, carving as the session does.
+  // postures, over the prior map, carving as the session does. With `final` and the extension's
+  // carve_with_earlier_scans, each node's scan then carves the points the later nodes laid.
   PointMap Render(const PointMapOptions& map_options, const MapExtensionOptions& extension,
-                  std::size_t first_node = 0) const;
+                  std::size_t first_node = 0, bool final = false) const;
   // The first of the newest nodes: those that lie within `within_m` of path from the newest one,
   // and at least the newest `count` (0 without nodes).
   std::size_t FirstNewestNode(double within_m, std::size_t count) const;

@@ -18,6 +18,11 @@ struct MapExtensionOptions {
   // 9 cm at 10 m). margin_m = 0 disables carving.
   double free_space_margin_m = 0.1;
   double free_space_margin_per_m = 0.01;
+  // A scan carves only what was laid before it, so a person laid by the last scans of a session
+  // into a place that earlier scans saw free would stay in the saved map. When on, the map the
+  // session saves is carved a second time, each node's scan against the points laid after it
+  // (LoopCloser::Render); the online map, and so the trajectory, are not changed.
+  bool carve_with_earlier_scans = true;
 };
 
 // Carves, then inserts the scan seen from T_world_laser; returns the number of points carved.
