@@ -185,8 +185,7 @@ TEST_F(SessionResumeTest, ARunTrackingItsNewestNodesResumesAndWritesTheWholeMap)
   ASSERT_GT(uninterrupted.counts.closures_tried, 0u) << "the drive must try loop closures";
   const auto& session = static_cast<const Session&>(*uninterrupted.session);
   const PointMap every_node =
-      session.loop_closer().Render(session.point_map().options(), MapExtensionOptions{},
-                                        0, true);
+      session.loop_closer().Render(session.point_map().options(), MapExtensionOptions{}, 0, true);
   EXPECT_EQ(session.point_map().live_size(), every_node.live_size());
   std::size_t largest_tracked = 0;
   {

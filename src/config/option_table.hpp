@@ -350,6 +350,9 @@ void VisitLocalise(C& c, V& v) {
   v("localise.relative_cost_needs_truncated_mean", l.relative_cost_needs_truncated_mean,
     "a hypothesis rule 3 rejects against the cheapest held one counts towards its discarding "
     "only when its truncated mean distance is above that one's too");
+  v("localise.steady_output", l.steady_output,
+    "while ambiguous, the output stays with the hypothesis it followed until that one fails the "
+    "rules or another costs min_cost_excess_ratio less at the same scans");
   v("localise.max_hypotheses", l.max_hypotheses, Bounds{1, 1000}, "hypotheses held at most");
   v("localise.same_posture_m", l.same_posture_m, Bounds{0, 1e3},
     "hypotheses closer than this and same_posture_rad are one, m");

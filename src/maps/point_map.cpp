@@ -461,9 +461,9 @@ void PointMap::RadiusSearchInBlocks(
   const auto search = [&](const Storage::Block& block) {
     if (block.slots.empty() || block.slots.back() < first_index) return;
     if (!keep_block(block.ix, block.iy)) return;
-    const auto from = first_index == 0 ? block.slots.begin()
-                                       : std::lower_bound(block.slots.begin(),
-                                                          block.slots.end(), first_index);
+    const auto from = first_index == 0
+                          ? block.slots.begin()
+                          : std::lower_bound(block.slots.begin(), block.slots.end(), first_index);
     for (auto slot = from; slot != block.slots.end(); ++slot) {
       const std::uint32_t i = *slot;
       if (!s.alive[i]) continue;

@@ -120,6 +120,24 @@ std::size_t CommonSince(const std::vector<Hypothesis>& hypotheses) {
   return since;
 }
 
+std::size_t SteadyOutput(const std::vector<Hypothesis>& ranked, const Pose2D& followed,
+                         double same_m, double same_rad, double min_excess_ratio) {
+  std::size_t kept = ranked.size();
+  double nearest_m = HUGE_VAL;
+  for (std::size_t i = 0; i < ranked.size(); ++i) {
+    const Pose2D d = Between(followed, ranked[i].T_world_robot);
+    const double distance_m = std::hypot(d.x_m, d.y_m);
+    if (distance_m < same_m && std::abs(d.yaw_rad) < same_rad && distance_m < nearest_m) {
+      kept = i;
+      nearest_m = distance_m;
+    }
+  }
+  if (kept == ranked.size() || kept == 0 || !ranked[kept].validated) return 0;
+  const CostComparison c = CompareCosts(ranked[kept], ranked.front(), 2, min_excess_ratio);
+  const bool cheaper = c.scans >= 2 && c.mean_excess >= min_excess_ratio * c.cheaper_mean;
+  return cheaper ? 0 : kept;
+}
+
 bool RanksBefore(const Hypothesis& a, const Hypothesis& b, std::size_t since) {
   if (a.validated != b.validated) return a.validated;
   const CostsSince ca = Since(a, since), cb = Since(b, since);

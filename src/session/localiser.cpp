@@ -119,6 +119,7 @@ IterationRecord Localiser::Process(const Iteration& iteration) {
   if (iteration.odometry && last_odometry_) {
     const Pose2D increment = Between(*last_odometry_, *iteration.odometry);
     for (Hypothesis& h : hypotheses_) h.T_world_robot = h.T_world_robot * increment;
+    if (last_output_) last_output_ = *last_output_ * increment;
   }
   if (!hypotheses_.empty()) {
     record.prediction = hypotheses_.front().T_world_robot;
@@ -325,7 +326,16 @@ std::string Localiser::OutCosted(const Hypothesis& h) const {
   return "";
 }
 
-// The state after this scan, the posture (the best hypothesis), confirmation, loss and recovery.
+// Which hypothesis is output (localise.steady_output): the best ranked, or while ambiguous the
+// one followed at the scan before, unless it failed the rules here or another is clearly cheaper.
+std::size_t Localiser::Output() const {
+  const LocaliserOptions& o = config_.localiser;
+  if (!o.steady_output || confirmed_ || hypotheses_.size() < 2 || !last_output_) return 0;
+  return SteadyOutput(hypotheses_, *last_output_, o.same_posture_m, o.same_posture_rad,
+                      o.min_cost_excess_ratio);
+}
+
+// The state after this scan, the posture (the output hypothesis), confirmation, loss and recovery.
 void Localiser::Conclude(IterationRecord& record) {
   record.hypotheses = hypotheses_;
   if (hypotheses_.empty()) {
@@ -335,6 +345,10 @@ void Localiser::Conclude(IterationRecord& record) {
     record.lost = lost_;
     return;
   }
+  // The output first, the others in their ranking.
+  const auto output = hypotheses_.begin() + static_cast<std::ptrdiff_t>(Output());
+  std::rotate(hypotheses_.begin(), output, output + 1);
+  record.hypotheses = hypotheses_;
   const Hypothesis& best = hypotheses_.front();
   if (!confirmed_ && hypotheses_.size() == 1 && best.searches >= 1 &&
       best.confirmed_in_row >= config_.localiser.confirm_after) {
@@ -344,6 +358,7 @@ void Localiser::Conclude(IterationRecord& record) {
   }
   record.state = confirmed_ ? "confirmed" : hypotheses_.size() > 1 ? "ambiguous" : "tentative";
   record.T_world_robot = best.T_world_robot;
+  last_output_ = best.T_world_robot;
   record.validated = confirmed_ && best.validated && !record.skipped;
   if (record.validated)
     if (const RankedCandidate* kept = record.Kept()) signature_.Add(kept->test);

@@ -55,6 +55,13 @@ CostComparison CompareCosts(const Hypothesis& costlier, const Hypothesis& cheape
 // mean distance is no higher than the cheapest's (on Intel's corridors a posture 1–2.5 m off
 // matches fewer beams more tightly and costs less by (3.11) at many scans, while the true one has
 // the lower truncated mean at nearly every scan: docs/BENCHMARKS.md).
+// Which of the ranked hypotheses (best first) the output follows: the one within same_m and
+// same_rad of `followed` (the posture output at the scan before, carried by the odometry; the
+// nearest if several) while it is validated and the best ranked did not cost at least
+// min_excess_ratio less than it at the scans both were localised at; else the best (0).
+std::size_t SteadyOutput(const std::vector<Hypothesis>& ranked, const Pose2D& followed,
+                         double same_m, double same_rad, double min_excess_ratio);
+
 std::vector<bool> JudgeRelativeCost(std::vector<Hypothesis>& held, double max_cost_ratio,
                                     bool needs_truncated_mean);
 

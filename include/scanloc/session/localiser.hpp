@@ -58,6 +58,12 @@ struct LocaliserOptions {
   // (3.11) at many scans, while the true one has the lower truncated mean at nearly every scan.
   // Off: it always counts.
   bool relative_cost_needs_truncated_mean = true;
+  // While ambiguous, the posture output stays with the hypothesis it followed at the scan before
+  // (the one within same_posture_m and same_posture_rad of it, carried by the odometry) while
+  // that one is validated and no other cost at least min_cost_excess_ratio less at the scans both
+  // were localised at: held look-alikes whose costs tie do not make the output jump between
+  // places from scan to scan. Off: the best ranked is output at every scan.
+  bool steady_output = true;
   int max_hypotheses = 8;  // the best by confirmations, then cost, are kept
   // Hypotheses closer than both of these are one (the better kept).
   double same_posture_m = 0.3;
@@ -99,6 +105,7 @@ class Localiser : public ScanProcessor {
   LocalisationOptions BoundedOptions(IterationRecord& record) const;
   double BoundAt(const Pose2D& T_world_robot) const;
   void Conclude(IterationRecord& record);
+  std::size_t Output() const;
 
   LocaliserConfig config_;
   LaserMounting mounting_;
@@ -113,8 +120,9 @@ class Localiser : public ScanProcessor {
   std::optional<Pose2D> last_odometry_;
   std::optional<Pose2D> last_localised_odometry_;
   std::optional<Pose2D> last_search_odometry_;
-  bool search_due_ = false;       // a confirmed posture was just lost
-  LikelihoodField search_field_;  // the storage of every global search's field
+  std::optional<Pose2D> last_output_;  // the posture output at the scan before, carried along
+  bool search_due_ = false;            // a confirmed posture was just lost
+  LikelihoodField search_field_;       // the storage of every global search's field
 };
 
 }  // namespace scanloc
