@@ -202,6 +202,61 @@ TEST(HypothesisEvidence, TheOutputStaysWithTheHypothesisItFollowedUntilAnotherIs
   EXPECT_EQ(SteadyOutput({followed, look_alike}, output_before, 0.3, 0.1, 0.1), 0u);
 }
 
+// A hypothesis localised at consecutive scans from `first_scan` with these truncated means,
+// expected values and match ratios.
+Hypothesis WithSeries(std::size_t first_scan, const std::vector<double>& truncated_means,
+                      const std::vector<double>& expect_values,
+                      const std::vector<double>& match_ratios) {
+  Hypothesis h;
+  for (std::size_t i = 0; i < truncated_means.size(); ++i)
+    RecordCost(h, first_scan + i, truncated_means[i], expect_values[i], match_ratios[i]);
+  return h;
+}
+
+TEST(HypothesisEvidence, APlaceMatchingItsPairsFarTighterAndNoDearerOutmatchesTheOther) {
+  // ACES's alike corridors on a loop-closed map (docs/BENCHMARKS.md): the true place matches as
+  // many pairs 30 % tighter and costs 6 % less by the truncated mean, which alone decides
+  // nothing.
+  const Hypothesis truth =
+      WithSeries(40, {0.136, 0.140, 0.131, 0.138, 0.142}, {0.041, 0.046, 0.039, 0.044, 0.048},
+                 {0.795, 0.805, 0.790, 0.800, 0.801});
+  const Hypothesis look_alike =
+      WithSeries(40, {0.146, 0.148, 0.141, 0.145, 0.150}, {0.062, 0.066, 0.058, 0.061, 0.069},
+                 {0.800, 0.812, 0.794, 0.808, 0.799});
+  EXPECT_FALSE(CompareCosts(look_alike, truth, 3, 0.1).decided) << "6 % is inside the margin";
+  EXPECT_TRUE(Outmatched(look_alike, truth, 3, 0.1));
+  EXPECT_FALSE(Outmatched(truth, look_alike, 3, 0.1));
+  EXPECT_FALSE(Outmatched(look_alike, truth, 6, 0.1)) << "fewer common scans than asked";
+  // A place 7 m along the corridor matching fewer pairs tighter: its truncated mean is the
+  // higher, so it outmatches nothing however much tighter it matches.
+  const Hypothesis along =
+      WithSeries(40, {0.156, 0.161, 0.152, 0.158, 0.160}, {0.030, 0.034, 0.029, 0.031, 0.035},
+                 {0.720, 0.715, 0.722, 0.718, 0.716});
+  EXPECT_FALSE(Outmatched(truth, along, 3, 0.1));
+  // Twins a few percent apart in both: nothing.
+  const Hypothesis twin =
+      WithSeries(40, {0.139, 0.143, 0.134, 0.141, 0.145}, {0.043, 0.048, 0.040, 0.046, 0.050},
+                 {0.794, 0.803, 0.791, 0.799, 0.800});
+  EXPECT_FALSE(Outmatched(twin, truth, 3, 0.1));
+  EXPECT_FALSE(CompareSeries(twin, truth, &CostAt::expect_value_m, 3, 0.1).decided);
+}
+
+TEST(HypothesisEvidence, ALowerTruncatedMeanIsNoEvidenceAgainstAPlaceThatMatchedTighter) {
+  // On one harness map the true place's truncated mean was 13 % above a look-alike's (it matched
+  // fewer pairs, each far tighter): decided by the truncated mean, contradicted by the expected
+  // value.
+  const Hypothesis truth =
+      WithSeries(30, {0.170, 0.176, 0.168, 0.173, 0.171}, {0.040, 0.044, 0.041, 0.043, 0.042},
+                 {0.720, 0.716, 0.724, 0.719, 0.721});
+  const Hypothesis look_alike =
+      WithSeries(30, {0.150, 0.155, 0.148, 0.152, 0.151}, {0.062, 0.066, 0.060, 0.065, 0.063},
+                 {0.810, 0.806, 0.812, 0.809, 0.811});
+  EXPECT_TRUE(CompareCosts(truth, look_alike, 3, 0.1).decided);
+  EXPECT_TRUE(MatchedTighter(truth, look_alike, 3, 0.1));
+  EXPECT_FALSE(MatchedTighter(look_alike, truth, 3, 0.1));
+  EXPECT_FALSE(Outmatched(truth, look_alike, 3, 0.1)) << "its truncated mean is the higher";
+}
+
 TEST(HypothesisEvidence, StudentQuantilesFallTowardTheNormalOne) {
   EXPECT_NEAR(StudentT999(1), 318.31, 0.01);
   EXPECT_NEAR(StudentT999(4), 7.173, 1e-3);

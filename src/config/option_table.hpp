@@ -350,6 +350,9 @@ void VisitLocalise(C& c, V& v) {
   v("localise.relative_cost_needs_truncated_mean", l.relative_cost_needs_truncated_mean,
     "a hypothesis rule 3 rejects against the cheapest held one counts towards its discarding "
     "only when its truncated mean distance is above that one's too");
+  v("localise.drop_outmatched", l.drop_outmatched,
+    "a hypothesis goes once another matched its pairs tighter beyond chance, by "
+    "min_cost_excess_ratio at least, with a lower truncated mean on average");
   v("localise.steady_output", l.steady_output,
     "while ambiguous, the output stays with the hypothesis it followed until that one fails the "
     "rules or another costs min_cost_excess_ratio less at the same scans");

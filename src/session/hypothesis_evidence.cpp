@@ -13,13 +13,15 @@ double TruncatedMeanDistance(const LikelihoodTestResult& test, double match_thre
   return ratio * test.expect_value_m + (1.0 - ratio) * match_threshold_m;
 }
 
-void RecordCost(Hypothesis& h, std::size_t scan, double cost) {
+void RecordCost(Hypothesis& h, std::size_t scan, double cost, double expect_value_m,
+                double match_ratio) {
   if (!std::isfinite(cost)) return;
+  const CostAt at{scan, cost, expect_value_m, match_ratio};
   if (!h.costs.empty() && h.costs.back().scan == scan) {
-    h.costs.back().cost = cost;  // localised twice at one scan (tracked, then found by a search)
+    h.costs.back() = at;  // localised twice at one scan (tracked, then found by a search)
     return;
   }
-  h.costs.push_back({scan, cost});
+  h.costs.push_back(at);
   if (h.costs.size() > kMaxCostHistory) h.costs.erase(h.costs.begin());
 }
 
@@ -36,6 +38,25 @@ double StudentT999(int dof) {
 
 CostComparison CompareCosts(const Hypothesis& costlier, const Hypothesis& cheaper, int min_scans,
                             double min_excess_ratio) {
+  return CompareSeries(costlier, cheaper, &CostAt::cost, min_scans, min_excess_ratio);
+}
+
+bool MatchedTighter(const Hypothesis& h, const Hypothesis& other, int min_scans,
+                    double min_excess_ratio) {
+  return CompareSeries(other, h, &CostAt::expect_value_m, min_scans, min_excess_ratio).decided;
+}
+
+bool Outmatched(const Hypothesis& h, const Hypothesis& other, int min_scans,
+                double min_excess_ratio) {
+  const CostComparison looser =
+      CompareSeries(h, other, &CostAt::expect_value_m, min_scans, min_excess_ratio);
+  if (!looser.decided) return false;
+  // ... and the truncated mean agrees, on average over the same scans.
+  return CompareCosts(h, other, min_scans, min_excess_ratio).mean_excess > 0.0;
+}
+
+CostComparison CompareSeries(const Hypothesis& costlier, const Hypothesis& cheaper,
+                             double CostAt::*series, int min_scans, double min_excess_ratio) {
   std::vector<double> excess;
   double cheaper_sum = 0.0;
   auto a = costlier.costs.begin();
@@ -46,8 +67,8 @@ CostComparison CompareCosts(const Hypothesis& costlier, const Hypothesis& cheape
     } else if (b->scan < a->scan) {
       ++b;
     } else {
-      cheaper_sum += b->cost;
-      excess.push_back((a++)->cost - (b++)->cost);
+      cheaper_sum += (*b).*series;
+      excess.push_back((*a++).*series - (*b++).*series);
     }
   }
   CostComparison out;

@@ -46,7 +46,7 @@ void TakeRefinement(Hypothesis& h, const RankedCandidate& refined, std::size_t s
   h.expect_value_m = refined.test.expect_value_m;
   h.match_ratio = refined.test.MatchRatio();
   h.truncated_mean_m = TruncatedMeanDistance(refined.test, options.scoring.test.match_threshold_m);
-  RecordCost(h, scan, h.truncated_mean_m);
+  RecordCost(h, scan, h.truncated_mean_m, h.expect_value_m, h.match_ratio);
 }
 
 // "(x, y, θ)" of a posture, for the reasons a hypothesis was discarded.
@@ -308,14 +308,32 @@ double Localiser::BoundAt(const Pose2D& T_world_robot) const {
 }
 
 // Why `h` goes: another held hypothesis cost less at the scans both were localised at, beyond
-// chance (hypothesis_evidence.hpp); "" when none did.
+// chance, or outmatched it there (hypothesis_evidence.hpp); "" when none did.
 std::string Localiser::OutCosted(const Hypothesis& h) const {
   const LocaliserOptions& o = config_.localiser;
+  const auto outmatched = [&](const Hypothesis& a, const Hypothesis& b) {
+    return o.drop_outmatched && Outmatched(a, b, o.confirm_after, o.min_cost_excess_ratio);
+  };
   for (const Hypothesis& other : hypotheses_) {
     if (&other == &h) continue;
+    // A truncated mean higher beyond chance decides nothing where h matched its pairs tighter
+    // beyond chance (the expected value's test the other way): evidence both ways.
     const CostComparison c = CompareCosts(h, other, o.confirm_after, o.min_cost_excess_ratio);
-    if (!c.decided) continue;
-    char text[160];
+    const bool costlier =
+        c.decided &&
+        !(o.drop_outmatched && MatchedTighter(h, other, o.confirm_after, o.min_cost_excess_ratio));
+    if (!costlier && !outmatched(h, other)) continue;
+    char text[200];
+    if (!costlier) {
+      const CostComparison e = CompareSeries(h, other, &CostAt::expect_value_m, o.confirm_after,
+                                             o.min_cost_excess_ratio);
+      std::snprintf(text, sizeof text,
+                    "outmatched by %s at the last %d scans: expected value %.0f %% higher "
+                    "(paired t %.1f), truncated mean higher too",
+                    Describe(other.T_world_robot).c_str(), e.scans,
+                    100.0 * e.mean_excess / e.cheaper_mean, e.t);
+      return text;
+    }
     std::snprintf(text, sizeof text,
                   "truncated mean distance %.0f %% more than %s at the last %d scans (paired t "
                   "%.1f)",

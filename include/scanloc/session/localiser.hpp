@@ -64,6 +64,10 @@ struct LocaliserOptions {
   // were localised at: held look-alikes whose costs tie do not make the output jump between
   // places from scan to scan. Off: the best ranked is output at every scan.
   bool steady_output = true;
+  // A hypothesis is also discarded once another outmatched it at the same scans (Outmatched,
+  // hypothesis_evidence.hpp): pairs matched tighter beyond chance by at least
+  // min_cost_excess_ratio, and a truncated mean lower on average too.
+  bool drop_outmatched = true;
   int max_hypotheses = 8;  // the best by confirmations, then cost, are kept
   // Hypotheses closer than both of these are one (the better kept).
   double same_posture_m = 0.3;

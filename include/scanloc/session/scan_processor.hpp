@@ -22,6 +22,9 @@ namespace scanloc {
 struct CostAt {
   std::size_t scan = 0;
   double cost = 0.0;
+  // The Likelihood Test's expected value and match ratio there (Outmatched).
+  double expect_value_m = 0.0;
+  double match_ratio = 0.0;
 };
 
 // A posture held while the scans have not yet told it from others (§3.3, last paragraph): carried
