@@ -1,12 +1,13 @@
-// `scanloc localise` on a map a default session built of ACES (../shared/datasets): a robot
-// carried elsewhere must be found again (the localise issue's kidnapping target, as
-// scripts/localise-benchmark.sh measures it). Skips when the logs are absent (in CI they are
-// present).
+// `scanloc localise` on a map a default session built of ACES (../shared/datasets): the
+// benchmark's three starts must agree with the mapping session and a robot carried elsewhere must
+// be found again (the localise issue's targets, as scripts/localise-benchmark.sh measures them).
+// Skips when the logs are absent (in CI they are present).
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -20,7 +21,27 @@
 namespace scanloc {
 namespace {
 
-class LocaliseOnAcesMap : public testing::TemporaryDirTest {};
+// One default session's map of ACES, built once for the suite (about 5 s) into its own folder.
+class LocaliseOnAcesMap : public testing::TemporaryDirTest {
+ protected:
+  static void SetUpTestSuite() {
+    const std::string datasets = testing::DatasetsDir();
+    if (datasets.empty()) return;
+    map_root_ = testing::TemporaryDir();
+    const auto session = testing::RunScanloc(
+        {"session", "--log", datasets + "/aces.clf.gz", "--out", map_root_ + "/map", "--quiet"},
+        map_root_);
+    if (!session.exited || session.exit_code != 0) return;
+    std::ifstream summary_file(map_root_ + "/map/summary.json");
+    scans_ = nlohmann::json::parse(summary_file)["iterations"].get<int>();
+  }
+  static void TearDownTestSuite() {
+    if (!map_root_.empty()) std::filesystem::remove_all(map_root_);
+  }
+  static std::string MapDir() { return map_root_ + "/map"; }
+  static inline std::string map_root_;
+  static inline int scans_ = 0;  // 0 when the session failed
+};
 
 std::vector<nlohmann::json> Records(const std::string& run) {
   std::vector<nlohmann::json> records;
@@ -29,29 +50,67 @@ std::vector<nlohmann::json> Records(const std::string& run) {
   return records;
 }
 
+// The distance of each record's posture from the mapping session's posture of the same scan
+// (matched by timestamp), for the records from scan `from` on.
+std::vector<double> DistancesFromTheSession(const std::vector<nlohmann::json>& records,
+                                            const std::string& map_dir, int from) {
+  std::map<long long, Pose2D> reference;
+  for (const StampedPose& p : ReadTumTrajectory(map_dir + "/trajectory.tum"))
+    reference[std::llround(p.timestamp_s * 1e6)] = p.pose;
+  std::vector<double> errors;
+  for (const auto& r : records) {
+    if (r["index"].get<int>() < from) continue;
+    const auto found = reference.find(std::llround(r["timestamp_s"].get<double>() * 1e6));
+    if (found == reference.end()) continue;  // a scan the session did not pose
+    const auto& p = r["T_world_robot"];
+    errors.push_back(std::hypot(p["x_m"].get<double>() - found->second.x_m,
+                                p["y_m"].get<double>() - found->second.y_m));
+  }
+  std::sort(errors.begin(), errors.end());
+  return errors;
+}
+
+// Measured 2026-12-02 (scripts/localise-benchmark.sh): all three agree, first confirmed at scans
+// 12, 17 and 36. Before the saved map was carved by earlier scans, aces-5267 confirmed a place
+// 4–19 m off (five points the session's last scans laid hid the rotunda ahead); before a place
+// could be outmatched, aces-1053 stayed ambiguous among alike corridors until scan 106.
+TEST_F(LocaliseOnAcesMap, TheBenchmarksThreeStartsAgreeWithTheMappingSessionAfter30Scans) {
+  SCANLOC_REQUIRE_DATASETS(datasets);
+  ASSERT_GT(scans_, 0) << "the mapping session failed";
+  for (const int k : {1, 3, 5}) {
+    const std::string start = std::to_string(scans_ * k / 7), run = dir_ + "/start-" + start;
+    const auto localise = testing::RunScanloc(
+        {"localise", "--point-map", MapDir() + "/map.pcd", "--log", datasets + "/aces.clf.gz",
+         "--skip-scans", start, "--max-scans", "400", "--out", run, "--quiet"},
+        dir_);
+    ASSERT_TRUE(localise.exited && localise.exit_code == 0) << localise;
+    const std::vector<double> errors =
+        DistancesFromTheSession(Records(run), MapDir(), 30);  // indices count from the start
+    ASSERT_GT(errors.size(), 300u) << "start " << start;
+    EXPECT_LT(errors[errors.size() / 2], 0.10) << "median, start " << start;
+    EXPECT_LT(errors[errors.size() * 95 / 100], 0.30) << "95th percentile, start " << start;
+  }
+}
+
 // Measured 2026-12-02 (scripts/localise-benchmark.sh): confirmed again 13 scans after the carry
 // on the default map, 10–14 on the ten maps of the robustness harness's perturbations (87 on the
 // default map, 4 of 10 within 30, with rule 2's bound the same at every place).
 TEST_F(LocaliseOnAcesMap, ARobotCarriedElsewhereIsConfirmedAgainWithin30ScansOfTheCarry) {
   SCANLOC_REQUIRE_DATASETS(datasets);
+  ASSERT_GT(scans_, 0) << "the mapping session failed";
   const std::string log = datasets + "/aces.clf.gz";
-  const auto session =
-      testing::RunScanloc({"session", "--log", log, "--out", dir_ + "/map", "--quiet"}, dir_);
-  ASSERT_TRUE(session.exited && session.exit_code == 0) << session;
-  std::ifstream summary_file(dir_ + "/map/summary.json");
-  const auto summary = nlohmann::json::parse(summary_file);
-  const int scans = summary["iterations"].get<int>();
+  const int scans = scans_;
   // The benchmark's splice: 200 scans from 1/7 of the log, then 200 from 4/7.
-  const auto splice = testing::RunCommand(
-      {"python3", std::string(SCANLOC_SOURCE_DIR) + "/scripts/splice-carmen.py", log,
-       std::to_string(scans / 7), std::to_string(scans * 4 / 7), "200"},
-      dir_);
+  const auto splice =
+      testing::RunCommand({"python3", std::string(SCANLOC_SOURCE_DIR) + "/scripts/splice-carmen.py",
+                           log, std::to_string(scans / 7), std::to_string(scans * 4 / 7), "200"},
+                          dir_);
   ASSERT_TRUE(splice.exited && splice.exit_code == 0) << splice.err;
   std::ofstream(dir_ + "/splice.clf") << splice.out;
-  const auto localise = testing::RunScanloc({"localise", "--point-map", dir_ + "/map/map.pcd",
-                                             "--log", dir_ + "/splice.clf", "--out",
-                                             dir_ + "/run", "--quiet"},
-                                            dir_);
+  const auto localise =
+      testing::RunScanloc({"localise", "--point-map", MapDir() + "/map.pcd", "--log",
+                           dir_ + "/splice.clf", "--out", dir_ + "/run", "--quiet"},
+                          dir_);
   ASSERT_TRUE(localise.exited && localise.exit_code == 0) << localise;
   const std::vector<nlohmann::json> records = Records(dir_ + "/run");
   ASSERT_EQ(records.size(), 400u);
@@ -65,21 +124,9 @@ TEST_F(LocaliseOnAcesMap, ARobotCarriedElsewhereIsConfirmedAgainWithin30ScansOfT
   EXPECT_LE(lost_at, 210);
   ASSERT_GE(reconfirmed_at, 0) << "the second place was never confirmed";
   EXPECT_LE(reconfirmed_at - 200, 30);
-  // From there on the postures are the mapping session's (matched by timestamp).
-  std::map<long long, Pose2D> reference;
-  for (const StampedPose& p : ReadTumTrajectory(dir_ + "/map/trajectory.tum"))
-    reference[std::llround(p.timestamp_s * 1e6)] = p.pose;
-  std::vector<double> errors;
-  for (const auto& r : records) {
-    if (r["index"].get<int>() < reconfirmed_at) continue;
-    const auto found = reference.find(std::llround(r["timestamp_s"].get<double>() * 1e6));
-    ASSERT_NE(found, reference.end()) << "scan " << r["index"];
-    const auto& p = r["T_world_robot"];
-    errors.push_back(std::hypot(p["x_m"].get<double>() - found->second.x_m,
-                                p["y_m"].get<double>() - found->second.y_m));
-  }
-  ASSERT_FALSE(errors.empty());
-  std::sort(errors.begin(), errors.end());
+  // From there on the postures are the mapping session's.
+  const std::vector<double> errors = DistancesFromTheSession(records, MapDir(), reconfirmed_at);
+  ASSERT_GT(errors.size(), 150u);
   EXPECT_LT(errors[errors.size() / 2], 0.05) << "median";
   EXPECT_LT(errors[errors.size() * 95 / 100], 0.3) << "95th percentile";
 }
