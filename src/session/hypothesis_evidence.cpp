@@ -51,8 +51,12 @@ bool Outmatched(const Hypothesis& h, const Hypothesis& other, int min_scans,
   const CostComparison looser =
       CompareSeries(h, other, &CostAt::expect_value_m, min_scans, min_excess_ratio);
   if (!looser.decided) return false;
+  return Outmatched(looser, CompareCosts(h, other, min_scans, min_excess_ratio));
+}
+
+bool Outmatched(const CostComparison& looser, const CostComparison& costlier) {
   // ... and the truncated mean agrees, on average over the same scans.
-  return CompareCosts(h, other, min_scans, min_excess_ratio).mean_excess > 0.0;
+  return looser.decided && costlier.mean_excess > 0.0;
 }
 
 CostComparison CompareSeries(const Hypothesis& costlier, const Hypothesis& cheaper,

@@ -311,22 +311,19 @@ double Localiser::BoundAt(const Pose2D& T_world_robot) const {
 // chance, or outmatched it there (hypothesis_evidence.hpp); "" when none did.
 std::string Localiser::OutCosted(const Hypothesis& h) const {
   const LocaliserOptions& o = config_.localiser;
-  const auto outmatched = [&](const Hypothesis& a, const Hypothesis& b) {
-    return o.drop_outmatched && Outmatched(a, b, o.confirm_after, o.min_cost_excess_ratio);
-  };
   for (const Hypothesis& other : hypotheses_) {
     if (&other == &h) continue;
     // A truncated mean higher beyond chance decides nothing where h matched its pairs tighter
     // beyond chance (the expected value's test the other way): evidence both ways.
     const CostComparison c = CompareCosts(h, other, o.confirm_after, o.min_cost_excess_ratio);
+    const CostComparison e =
+        CompareSeries(h, other, &CostAt::expect_value_m, o.confirm_after, o.min_cost_excess_ratio);
     const bool costlier =
         c.decided &&
         !(o.drop_outmatched && MatchedTighter(h, other, o.confirm_after, o.min_cost_excess_ratio));
-    if (!costlier && !outmatched(h, other)) continue;
+    if (!costlier && !(o.drop_outmatched && Outmatched(e, c))) continue;
     char text[200];
     if (!costlier) {
-      const CostComparison e = CompareSeries(h, other, &CostAt::expect_value_m, o.confirm_after,
-                                             o.min_cost_excess_ratio);
       std::snprintf(text, sizeof text,
                     "outmatched by %s at the last %d scans: expected value %.0f %% higher "
                     "(paired t %.1f), truncated mean higher too",
@@ -355,8 +352,8 @@ std::size_t Localiser::Output() const {
 
 // The state after this scan, the posture (the output hypothesis), confirmation, loss and recovery.
 void Localiser::Conclude(IterationRecord& record) {
-  record.hypotheses = hypotheses_;
   if (hypotheses_.empty()) {
+    record.hypotheses.clear();
     record.state = "searching";
     record.posed = false;
     record.validated = false;

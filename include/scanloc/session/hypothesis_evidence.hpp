@@ -62,6 +62,9 @@ CostComparison CompareSeries(const Hypothesis& costlier, const Hypothesis& cheap
 // corridor) has the higher truncated mean and is never outmatching.
 bool Outmatched(const Hypothesis& h, const Hypothesis& other, int min_scans,
                 double min_excess_ratio);
+// The same from the two comparisons of h against other it rests on: the expected value's
+// (`looser`) and the truncated mean's (`costlier`, CompareCosts).
+bool Outmatched(const CostComparison& looser, const CostComparison& costlier);
 // Whether `h` matched its pairs tighter than `other` beyond chance, by min_excess_ratio at least
 // (the expected value's CompareSeries): then other's lower truncated mean is evidence the other
 // way, and the localiser discards neither by it.
