@@ -11,12 +11,31 @@ namespace {
 // Scales a median absolute deviation to the σ of a normal distribution.
 constexpr double kMadToSigma = 1.4826;
 
-double Median(std::vector<double> values) {
-  const std::size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + mid, values.end());
-  const double upper = values[mid];
-  if (values.size() % 2 == 1) return upper;
-  return 0.5 * (upper + *std::max_element(values.begin(), values.begin() + mid));
+// The median of sorted values (not empty): the middle one, or the mean of the two middle ones.
+double MedianOfSorted(const std::vector<double>& sorted) {
+  const std::size_t mid = sorted.size() / 2;
+  const double upper = sorted[mid];
+  if (sorted.size() % 2 == 1) return upper;
+  return 0.5 * (upper + sorted[mid - 1]);
+}
+
+// The median of |v − centre| over sorted values (not empty), without sorting the deviations: they
+// grow from the values nearest the centre outwards on either side, so the smallest come from a
+// merge of the two sides, and only the first half of them is walked.
+double MedianDeviationOfSorted(const std::vector<double>& sorted, double centre) {
+  const std::size_t n = sorted.size(), mid = n / 2;
+  std::size_t right = static_cast<std::size_t>(
+      std::lower_bound(sorted.begin(), sorted.end(), centre) - sorted.begin());
+  std::size_t left = right;  // the next value on the left is sorted[left − 1]
+  double previous = 0.0, current = 0.0;
+  for (std::size_t taken = 0; taken <= mid; ++taken) {
+    previous = current;
+    const bool from_left = right == n || (left > 0 && std::abs(sorted[left - 1] - centre) <=
+                                                          std::abs(sorted[right] - centre));
+    current = from_left ? std::abs(sorted[--left] - centre) : std::abs(sorted[right++] - centre);
+  }
+  if (n % 2 == 1) return current;
+  return 0.5 * (current + previous);
 }
 
 std::vector<double> Normalised(const std::vector<int>& histogram) {
@@ -46,10 +65,10 @@ LaserSignature::LaserSignature(LaserSignatureOptions options) : options_(options
 
 void LaserSignature::Add(const LikelihoodTestResult& confirmed) {
   if (options_.window == 0 || confirmed.match_pairs == 0) return;
-  expect_values_m_.push_back(confirmed.expect_value_m);
+  expect_values_m_.Push(confirmed.expect_value_m);
   histograms_.push_back(Normalised(confirmed.histogram));
   if (expect_values_m_.size() > static_cast<std::size_t>(options_.window)) {
-    expect_values_m_.pop_front();
+    expect_values_m_.PopOldest();
     histograms_.pop_front();
   }
 }
@@ -61,10 +80,9 @@ bool LaserSignature::learned() const {
 
 double LaserSignature::ExpectValueBound(double prior_m) const {
   if (!learned()) return prior_m;
-  std::vector<double> values(expect_values_m_.begin(), expect_values_m_.end());
-  const double median = Median(values);
-  for (double& v : values) v = std::abs(v - median);
-  const double sigma = kMadToSigma * Median(values);
+  const std::vector<double>& values = expect_values_m_.sorted();
+  const double median = MedianOfSorted(values);
+  const double sigma = kMadToSigma * MedianDeviationOfSorted(values, median);
   return std::max(prior_m, median + options_.spread_factor * sigma);
 }
 

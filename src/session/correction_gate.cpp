@@ -17,13 +17,6 @@ namespace {
 constexpr double kFloorM = 1e-3;
 constexpr double kFloorRad = 1e-3;
 
-double Median(const std::deque<double>& values) {
-  std::vector<double> sorted(values.begin(), values.end());
-  const auto mid = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
-  std::nth_element(sorted.begin(), mid, sorted.end());
-  return *mid;
-}
-
 }  // namespace
 
 void CorrectionGateOptions::Validate() const {
@@ -63,17 +56,14 @@ double WeakAxisRatio(const Eigen::Matrix2d& covariance, const Eigen::Vector2d& d
 
 void CorrectionGate::Add(const Pose2D& correction, double match_ratio) {
   if (options_.window == 0) return;
-  translations_m_.push_back(std::hypot(correction.x_m, correction.y_m));
-  rotations_rad_.push_back(std::abs(NormalizeAngle(correction.yaw_rad)));
-  match_ratios_.push_back(match_ratio);
+  translations_m_.Push(std::hypot(correction.x_m, correction.y_m));
+  rotations_rad_.Push(std::abs(NormalizeAngle(correction.yaw_rad)));
+  match_ratios_.Push(match_ratio);
   while (translations_m_.size() > static_cast<std::size_t>(options_.window)) {
-    translations_m_.pop_front();
-    rotations_rad_.pop_front();
-    match_ratios_.pop_front();
+    translations_m_.PopOldest();
+    rotations_rad_.PopOldest();
+    match_ratios_.PopOldest();
   }
-  median_translation_m_ = Median(translations_m_);
-  median_rotation_rad_ = Median(rotations_rad_);
-  median_match_ratio_ = Median(match_ratios_);
 }
 
 std::optional<CorrectionBound> CorrectionGate::Bound(int unconfirmed) const {
@@ -81,8 +71,8 @@ std::optional<CorrectionBound> CorrectionGate::Bound(int unconfirmed) const {
       translations_m_.size() < static_cast<std::size_t>(options_.min_samples))
     return std::nullopt;
   const double scale = options_.factor * std::sqrt(1.0 + std::max(0, unconfirmed));
-  return CorrectionBound{scale * std::max(kFloorM, median_translation_m_),
-                         scale * std::max(kFloorRad, median_rotation_rad_)};
+  return CorrectionBound{scale * std::max(kFloorM, translations_m_.UpperMedian()),
+                         scale * std::max(kFloorRad, rotations_rad_.UpperMedian())};
 }
 
 bool CorrectionGate::Unsupported(const CorrectionBound& bound, const Pose2D& prediction,
@@ -118,7 +108,7 @@ void CorrectionGate::Moved(const Pose2D& odometry_increment) {
 
 bool CorrectionGate::LowOverlap(double match_ratio) const {
   return samples() >= static_cast<std::size_t>(options_.min_samples) &&
-         match_ratio < options_.overlap_fraction * median_match_ratio_;
+         match_ratio < options_.overlap_fraction * match_ratios_.UpperMedian();
 }
 
 }  // namespace scanloc

@@ -10,6 +10,7 @@
 #include <deque>
 #include <vector>
 
+#include "scanloc/common/sorted_window.hpp"
 #include "scanloc/likelihood/likelihood_test.hpp"
 
 namespace scanloc {
@@ -51,7 +52,7 @@ class LaserSignature {
 
  private:
   LaserSignatureOptions options_;
-  std::deque<double> expect_values_m_;
+  SortedWindow expect_values_m_;
   std::deque<std::vector<double>> histograms_;  // normalised, one per remembered scan
 };
 

@@ -14,11 +14,11 @@
 // the scan constrains least (a slide along a corridor's axis).
 
 #include <cstddef>
-#include <deque>
 #include <optional>
 
 #include <Eigen/Core>
 
+#include "scanloc/common/sorted_window.hpp"
 #include "scanloc/geometry/pose2d.hpp"
 
 namespace scanloc {
@@ -92,9 +92,7 @@ class CorrectionGate {
 
  private:
   CorrectionGateOptions options_;
-  std::deque<double> translations_m_, rotations_rad_, match_ratios_;
-  // Their medians, updated by Add.
-  double median_translation_m_ = 0.0, median_rotation_rad_ = 0.0, median_match_ratio_ = 0.0;
+  SortedWindow translations_m_, rotations_rad_, match_ratios_;
   std::optional<Pose2D> refused_;
 
   // Whether the scan fails to support a correction beyond `bound` (see the options).
