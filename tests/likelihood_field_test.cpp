@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -144,6 +145,27 @@ TEST(LikelihoodField, SplitCellsSumToTheSameQuantaAsCellsReadOneByOneAtEveryMove
             << level << " " << dx << " " << dy;
   EXPECT_THROW(field.SumQuanta(0, split, reach + 1, 0), std::out_of_range);
   EXPECT_THROW(field.SumQuanta(0, split, 0, -reach - 1), std::out_of_range);
+}
+
+TEST(LikelihoodField, FourMovesSummedInOnePassGiveEachMovesOwnSumWhereverTheyLieWithinReach) {
+  const LikelihoodField field(ScatteredPoints(60, 7), {0.0, 0.0}, {2.0, 1.3});
+  const std::vector<Eigen::Vector2i> cells = CellsInAndAround(field, 300, 11);
+  const int reach = 6;
+  const LikelihoodField::MovedCells split = field.Split(cells, reach);
+  for (int level = 0; level < field.levels(); ++level)
+    for (const int step : {0, 1, 2, 4})
+      for (int dy = -reach; dy + step <= reach; ++dy)
+        for (int dx = -reach; dx + step <= reach; ++dx) {
+          const std::array<unsigned, 4> four = field.SumQuantaOfFour(level, split, dx, dy, step);
+          ASSERT_EQ(four[0], field.SumQuanta(level, split, dx, dy));
+          ASSERT_EQ(four[1], field.SumQuanta(level, split, dx + step, dy));
+          ASSERT_EQ(four[2], field.SumQuanta(level, split, dx, dy + step));
+          ASSERT_EQ(four[3], field.SumQuanta(level, split, dx + step, dy + step))
+              << level << " " << dx << " " << dy << " " << step;
+        }
+  EXPECT_THROW(field.SumQuantaOfFour(0, split, reach - 1, 0, 2), std::out_of_range);
+  EXPECT_THROW(field.SumQuantaOfFour(0, split, 0, -reach - 1, 1), std::out_of_range);
+  EXPECT_THROW(field.SumQuantaOfFour(0, split, 0, 0, -1), std::out_of_range);
 }
 
 }  // namespace

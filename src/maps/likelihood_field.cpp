@@ -71,6 +71,28 @@ LikelihoodField::MovedCells LikelihoodField::Split(const std::vector<Eigen::Vect
   return split;
 }
 
+std::array<unsigned, 4> LikelihoodField::SumQuantaOfFour(int level, const MovedCells& cells, int dx,
+                                                         int dy, int step) const {
+  if (std::min(dx, dy) < -cells.reach || std::max(dx, dy) + std::max(step, 0) > cells.reach ||
+      step < 0)
+    throw std::out_of_range("LikelihoodField::SumQuantaOfFour: a move beyond the cells' reach");
+  const std::uint8_t* values = levels_[level].data();
+  const std::ptrdiff_t offset = static_cast<std::ptrdiff_t>(dy) * width_ + dx;
+  const std::ptrdiff_t up = static_cast<std::ptrdiff_t>(step) * width_;
+  unsigned s00 = 0, s10 = 0, s01 = 0, s11 = 0;
+  for (const std::int32_t index : cells.inside) {
+    const std::uint8_t* at = values + index + offset;
+    s00 += at[0];
+    s10 += at[step];
+    s01 += at[up];
+    s11 += at[up + step];
+  }
+  return {s00 + CheckedQuanta(values, cells.edge, dx, dy),
+          s10 + CheckedQuanta(values, cells.edge, dx + step, dy),
+          s01 + CheckedQuanta(values, cells.edge, dx, dy + step),
+          s11 + CheckedQuanta(values, cells.edge, dx + step, dy + step)};
+}
+
 // Raises the cells within kCutoffSigmas·σ of the point (a square of them) to exp(−d²/2σ²) of their
 // centre's distance, rounded to the nearest quantum. The Gaussian is separable: one exp per
 // column and one per row, where a cell by cell exp made building a field a tenth of a loop-closing

@@ -154,12 +154,37 @@ class BranchAndBound {
                      [](const Node& a, const Node& b) { return a.score > b.score; });
   }
   Node Scored(Node node) {
-    const LikelihoodField::MovedCells& cells = cells_[node.heading];
-    const float sum = static_cast<float>(field_.SumQuanta(node.level, cells, node.ox, node.oy)) *
-                      LikelihoodField::kQuantum;
-    node.score = cells.size() == 0 ? 0.0f : sum / cells.size();
+    return WithQuanta(node, field_.SumQuanta(node.level, cells_[node.heading], node.ox, node.oy));
+  }
+  // The node scored by the sum of its heading's cells, in quanta.
+  Node WithQuanta(Node node, unsigned quanta) {
+    const std::size_t cells = cells_[node.heading].size();
+    const float sum = static_cast<float>(quanta) * LikelihoodField::kQuantum;
+    node.score = cells == 0 ? 0.0f : sum / cells;
     ++scored_;
     return node;
+  }
+  // The node's children (at most four, those within the window), scored: all four in one pass
+  // over the cells when all lie within it, as most do.
+  std::size_t Children(const Node& node, std::array<Node, 4>& children) {
+    const int step = 1 << (node.level - 1), level = node.level - 1;
+    std::size_t count = 0;
+    if (node.ox + step <= half_ && node.oy + step <= half_) {
+      const std::array<unsigned, 4> quanta =
+          field_.SumQuantaOfFour(level, cells_[node.heading], node.ox, node.oy, step);
+      for (const int dy : {0, step})
+        for (const int dx : {0, step}) {
+          children[count] =
+              WithQuanta({node.heading, node.ox + dx, node.oy + dy, level}, quanta[count]);
+          ++count;
+        }
+      return count;
+    }
+    for (const int dy : {0, step})
+      for (const int dx : {0, step})
+        if (node.ox + dx <= half_ && node.oy + dy <= half_)
+          children[count++] = Scored({node.heading, node.ox + dx, node.oy + dy, level});
+    return count;
   }
   float Threshold() const {
     if (best_.size() < pool_) return -1.0f;
@@ -202,20 +227,16 @@ class BranchAndBound {
     if (node.score <= Threshold()) return;
     if (node.level == 0) return Offer(node);
     if (skip_shadowed_ && Shadowed(node)) return;
-    const int step = 1 << (node.level - 1);
     // At most four children, kept on the stack and put best first by a stable insertion (the
     // order a stable sort gives, without its buffer on the heap at every node).
     std::array<Node, 4> children;
-    std::size_t count = 0;
-    for (const int dy : {0, step})
-      for (const int dx : {0, step}) {
-        if (node.ox + dx > half_ || node.oy + dy > half_) continue;
-        const Node child = Scored({node.heading, node.ox + dx, node.oy + dy, node.level - 1});
-        std::size_t at = count++;
-        for (; at > 0 && children[at - 1].score < child.score; --at)
-          children[at] = children[at - 1];
-        children[at] = child;
-      }
+    const std::size_t count = Children(node, children);
+    for (std::size_t i = 1; i < count; ++i) {
+      const Node child = children[i];
+      std::size_t at = i;
+      for (; at > 0 && children[at - 1].score < child.score; --at) children[at] = children[at - 1];
+      children[at] = child;
+    }
     for (std::size_t i = 0; i < count; ++i) Descend(children[i]);
   }
 
