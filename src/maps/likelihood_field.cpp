@@ -73,8 +73,7 @@ LikelihoodField::MovedCells LikelihoodField::Split(const std::vector<Eigen::Vect
 
 std::array<unsigned, 4> LikelihoodField::SumQuantaOfFour(int level, const MovedCells& cells, int dx,
                                                          int dy, int step) const {
-  if (std::min(dx, dy) < -cells.reach || std::max(dx, dy) + std::max(step, 0) > cells.reach ||
-      step < 0)
+  if (step < 0 || std::min(dx, dy) < -cells.reach || std::max(dx, dy) + step > cells.reach)
     throw std::out_of_range("LikelihoodField::SumQuantaOfFour: a move beyond the cells' reach");
   const std::uint8_t* values = levels_[level].data();
   const std::ptrdiff_t offset = static_cast<std::ptrdiff_t>(dy) * width_ + dx;
