@@ -14,7 +14,7 @@
 #include <nanoflann.hpp>
 #pragma GCC diagnostic pop
 
-#include "cell_table.hpp"
+#include "cell_tiles.hpp"
 #include "scanloc/maps/line_map.hpp"
 
 namespace scanloc {
@@ -58,24 +58,25 @@ std::int64_t CellKey(const Eigen::Vector2d& p, double cell_size_m) {
 // The point held by one of the 3×3 cells around `p` whose first sample is nearest it: within one
 // cell diagonal, or anywhere in p's own cell; kNone if none. The cells' indices are those of p
 // moved by a cell each way (six divisions, not eighteen: each is needed thrice).
-std::uint32_t NearestHeld(const CellTable& cells, const std::vector<Eigen::Vector2d>& first_samples,
+std::uint32_t NearestHeld(const CellTiles& cells, const std::vector<Eigen::Vector2d>& first_samples,
                           const Eigen::Vector2d& p, double c) {
   std::int64_t ix[3], iy[3];
   for (int k = 0; k < 3; ++k) {
     ix[k] = CellIndex(p.x() + (k - 1) * c, c);
     iy[k] = CellIndex(p.y() + (k - 1) * c, c);
   }
+  std::uint32_t held[3][3];
+  cells.FindNine(ix, iy, held);
   const double reach2 = 2.0 * c * c;
   double nearest2 = std::numeric_limits<double>::infinity();
-  std::uint32_t nearest = CellTable::kNone;
+  std::uint32_t nearest = CellTiles::kNone;
   for (int dx = 0; dx < 3; ++dx)
     for (int dy = 0; dy < 3; ++dy) {
-      const std::uint32_t held = cells.Find(CellKey(ix[dx], iy[dy]));
-      if (held == CellTable::kNone) continue;
-      const double d2 = (first_samples[held] - p).squaredNorm();
+      if (held[dx][dy] == CellTiles::kNone) continue;
+      const double d2 = (first_samples[held[dx][dy]] - p).squaredNorm();
       if (d2 < nearest2 && (d2 < reach2 || (dx == 1 && dy == 1))) {
         nearest2 = d2;
-        nearest = held;
+        nearest = held[dx][dy];
       }
     }
   return nearest;
@@ -141,7 +142,7 @@ struct PointMap::Storage {
   // Bounds of `indexed`, every point ever added: a search whose radius covers them lists the
   // live points directly instead of walking the tree to every leaf.
   Eigen::AlignedBox2d bounds;
-  CellTable occupied_cells;
+  CellTiles occupied_cells;
   // The live points by the kSearchCellM cell of their first sample, in the order they were added
   // (carving takes a point out of its cell and its block).
   std::unordered_map<std::int64_t, std::vector<std::uint32_t>> search_cells;
@@ -217,13 +218,15 @@ std::size_t PointMap::Add(const std::vector<Eigen::Vector2d>& points_world,
     bool inserted_new = true;
     std::uint32_t existing = 0;
     if (options_.cell_size_m > 0.0 && !merge) {
-      s.occupied_cells.Emplace(CellKey(p, options_.cell_size_m),
+      s.occupied_cells.Emplace(CellIndex(p.x(), options_.cell_size_m),
+                               CellIndex(p.y(), options_.cell_size_m),
                                static_cast<std::uint32_t>(s.points.size()));
     } else if (options_.cell_size_m > 0.0) {
       existing = NearestHeld(s.occupied_cells, s.indexed, p, options_.cell_size_m);
-      inserted_new = existing == CellTable::kNone;
+      inserted_new = existing == CellTiles::kNone;
       if (inserted_new)
-        s.occupied_cells.Emplace(CellKey(p, options_.cell_size_m),
+        s.occupied_cells.Emplace(CellIndex(p.x(), options_.cell_size_m),
+                                 CellIndex(p.y(), options_.cell_size_m),
                                  static_cast<std::uint32_t>(s.points.size()));
     }
     Eigen::Vector2f normal = Eigen::Vector2f::Zero();
@@ -364,7 +367,8 @@ std::size_t PointMap::CarveFreeSpace(const LaserScan& scan, const Pose2D& T_worl
         s.blocks.at(CellKey(BlockIndex(first_sample.x()), BlockIndex(first_sample.y()))).slots,
         index);
     if (options_.cell_size_m > 0.0)
-      s.occupied_cells.EraseIfHolds(CellKey(s.indexed[index], options_.cell_size_m), index);
+      s.occupied_cells.EraseIfHolds(CellIndex(first_sample.x(), options_.cell_size_m),
+                                    CellIndex(first_sample.y(), options_.cell_size_m), index);
     ++removed;
   }
   s.removed += removed;
