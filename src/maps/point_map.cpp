@@ -14,6 +14,7 @@
 #include <nanoflann.hpp>
 #pragma GCC diagnostic pop
 
+#include "cell_table.hpp"
 #include "cell_tiles.hpp"
 #include "scanloc/maps/line_map.hpp"
 
@@ -144,8 +145,14 @@ struct PointMap::Storage {
   Eigen::AlignedBox2d bounds;
   CellTiles occupied_cells;
   // The live points by the kSearchCellM cell of their first sample, in the order they were added
-  // (carving takes a point out of its cell and its block).
-  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> search_cells;
+  // (carving takes a point out of its cell and its block): the cell's key gives the index of its
+  // list (a CellTable probe, not std::unordered_map's division and node pointer).
+  CellTable search_cell_of;
+  std::vector<std::vector<std::uint32_t>> search_cells;
+  std::vector<std::uint32_t>* SearchCell(std::int64_t key) {
+    const std::uint32_t list = search_cell_of.Find(key);
+    return list == CellTable::kNone ? nullptr : &search_cells[list];
+  }
   // The same by kBlockSideM block, for region culling.
   struct Block {
     std::int64_t ix, iy;
@@ -250,7 +257,12 @@ std::size_t PointMap::Add(const std::vector<Eigen::Vector2d>& points_world,
       }
       continue;
     }
-    s.search_cells[CellKey(p, kSearchCellM)].push_back(static_cast<std::uint32_t>(s.points.size()));
+    const std::int64_t search_key = CellKey(p, kSearchCellM);
+    if (s.search_cell_of.Find(search_key) == CellTable::kNone) {
+      s.search_cell_of.Emplace(search_key, static_cast<std::uint32_t>(s.search_cells.size()));
+      s.search_cells.emplace_back();
+    }
+    s.SearchCell(search_key)->push_back(static_cast<std::uint32_t>(s.points.size()));
     const std::int64_t block_x = BlockIndex(p.x()), block_y = BlockIndex(p.y());
     s.blocks.try_emplace(CellKey(block_x, block_y), Storage::Block{block_x, block_y, {}})
         .first->second.slots.push_back(static_cast<std::uint32_t>(s.points.size()));
@@ -362,7 +374,8 @@ std::size_t PointMap::CarveFreeSpace(const LaserScan& scan, const Pose2D& T_worl
     s.tree.removePoint(index);
     // Out of the lists that searches and simulated scans walk, which skipped it anyway.
     const Eigen::Vector2d& first_sample = s.indexed[index];
-    EraseIndex(s.search_cells.at(CellKey(first_sample, kSearchCellM)), index);
+    EraseIndex(*s.SearchCell(CellKey(first_sample, kSearchCellM)),
+               index);  // a point's cell is listed
     EraseIndex(
         s.blocks.at(CellKey(BlockIndex(first_sample.x()), BlockIndex(first_sample.y()))).slots,
         index);
@@ -417,9 +430,9 @@ void PointMap::RadiusSearch(const Eigen::Vector2d& centre, double radius_m,
   if ((cell_x1 - cell_x0 + 1) * (cell_y1 - cell_y0 + 1) <= kMaxSearchCells) {
     for (std::int64_t ix = cell_x0; ix <= cell_x1; ++ix)
       for (std::int64_t iy = cell_y0; iy <= cell_y1; ++iy) {
-        const auto cell = s.search_cells.find(CellKey(ix, iy));
-        if (cell == s.search_cells.end()) continue;
-        for (const std::uint32_t i : cell->second) {  // live points only
+        const std::uint32_t list = s.search_cell_of.Find(CellKey(ix, iy));
+        if (list == CellTable::kNone) continue;
+        for (const std::uint32_t i : s.search_cells[list]) {  // live points only
           const double d2 = (s.points[i] - centre).squaredNorm();
           if (d2 < radius2) found.emplace_back(i, d2);
         }
