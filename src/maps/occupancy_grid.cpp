@@ -139,15 +139,20 @@ OccupancyGrid OccupancyGridBuilder::Build() const {
       static_cast<std::size_t>(std::floor((high.x() - grid.origin_m.x()) / r) + 1 + margin);
   grid.height =
       static_cast<std::size_t>(std::floor((high.y() - grid.origin_m.y()) / r) + 1 + margin);
-  grid.log_odds.assign(grid.width * grid.height, 0.0f);
 
   // Each scan votes once per cell: a cell where one of its beams ends, or else one they cross.
   // The end cells are marked first, so that a crossed cell is voted free as it is first crossed.
-  std::vector<std::uint32_t> missed(grid.log_odds.size(), 0), hit(grid.log_odds.size(), 0);
-  auto update = [&](std::size_t cell, double change) {
-    grid.log_odds[cell] = static_cast<float>(
-        std::clamp(grid.log_odds[cell] + change, options_.log_odds_min, options_.log_odds_max));
+  // A cell's marks and log-odds side by side: a traversal step reads one place in memory.
+  struct Votes {
+    std::uint32_t missed = 0, hit = 0;  // the last scan that crossed it, that ended in it
+    float log_odds = 0.0f;
   };
+  std::vector<Votes> votes(grid.width * grid.height);
+  const double lowest = options_.log_odds_min, highest = options_.log_odds_max;
+  auto update = [&](Votes& cell, double change) {
+    cell.log_odds = static_cast<float>(std::clamp(cell.log_odds + change, lowest, highest));
+  };
+  const double miss = options_.log_odds_miss, hit = options_.log_odds_hit;
   std::vector<std::size_t> ends;  // one scan's end cells, in beam order
   for (std::size_t s = 0; s < scans_.size(); ++s) {
     const std::uint32_t mark = static_cast<std::uint32_t>(s + 1);
@@ -158,20 +163,24 @@ OccupancyGrid OccupancyGridBuilder::Build() const {
       const Eigen::Vector2d to = (endpoint - grid.origin_m) / r;
       ends.push_back(static_cast<std::size_t>(to.y()) * grid.width +
                      static_cast<std::size_t>(to.x()));
-      hit[ends.back()] = mark;
+      votes[ends.back()].hit = mark;
     }
     for (const Eigen::Vector2d& endpoint : endpoints)
       TraverseCells(from, (endpoint - grid.origin_m) / r, grid.width, [&](std::size_t cell) {
-        if (missed[cell] == mark) return;
-        missed[cell] = mark;
-        if (hit[cell] != mark) update(cell, options_.log_odds_miss);
+        Votes& crossed = votes[cell];
+        if (crossed.missed == mark) return;
+        crossed.missed = mark;
+        if (crossed.hit != mark) update(crossed, miss);
       });
     for (const std::size_t cell : ends)
-      if (hit[cell] == mark) {
-        update(cell, options_.log_odds_hit);
-        hit[cell] = 0;  // counted once
+      if (votes[cell].hit == mark) {
+        update(votes[cell], hit);
+        votes[cell].hit = 0;  // counted once
       }
   }
+  grid.log_odds.resize(votes.size());
+  for (std::size_t cell = 0; cell < votes.size(); ++cell)
+    grid.log_odds[cell] = votes[cell].log_odds;
   return grid;
 }
 
