@@ -1,9 +1,9 @@
 #pragma once
-// The point map's de-duplication cells: which point a grid cell holds. Each inserted sample looks
-// up the nine cells around it, so this is the point map's busiest table. std::unordered_map
-// divides by a prime and follows a node pointer at every lookup; this table keeps its slots in
-// one array (linear probing, Fibonacci hashing, at most half full) and erases by shifting the
-// probe run back, so that no tombstone slows later lookups.
+// The point map's tables from a cell's 64-bit key to a 32-bit value: which tile of
+// de-duplication cells holds a cell (cell_tiles.hpp), which list holds a search cell's points.
+// std::unordered_map divides by a prime and follows a node pointer at every lookup; this table
+// keeps its slots in one array (linear probing, Fibonacci hashing, at most half full) and erases
+// by shifting the probe run back, so that no tombstone slows later lookups.
 
 #include <cstddef>
 #include <cstdint>

@@ -374,8 +374,8 @@ std::size_t PointMap::CarveFreeSpace(const LaserScan& scan, const Pose2D& T_worl
     s.tree.removePoint(index);
     // Out of the lists that searches and simulated scans walk, which skipped it anyway.
     const Eigen::Vector2d& first_sample = s.indexed[index];
-    EraseIndex(*s.SearchCell(CellKey(first_sample, kSearchCellM)),
-               index);  // a point's cell is listed
+    // Every live point's search cell has a list (Add made it).
+    EraseIndex(*s.SearchCell(CellKey(first_sample, kSearchCellM)), index);
     EraseIndex(
         s.blocks.at(CellKey(BlockIndex(first_sample.x()), BlockIndex(first_sample.y()))).slots,
         index);
