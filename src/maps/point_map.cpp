@@ -258,11 +258,13 @@ std::size_t PointMap::Add(const std::vector<Eigen::Vector2d>& points_world,
       continue;
     }
     const std::int64_t search_key = CellKey(p, kSearchCellM);
-    if (s.search_cell_of.Find(search_key) == CellTable::kNone) {
-      s.search_cell_of.Emplace(search_key, static_cast<std::uint32_t>(s.search_cells.size()));
+    std::uint32_t list = s.search_cell_of.Find(search_key);
+    if (list == CellTable::kNone) {
+      list = static_cast<std::uint32_t>(s.search_cells.size());
+      s.search_cell_of.Emplace(search_key, list);
       s.search_cells.emplace_back();
     }
-    s.SearchCell(search_key)->push_back(static_cast<std::uint32_t>(s.points.size()));
+    s.search_cells[list].push_back(static_cast<std::uint32_t>(s.points.size()));
     const std::int64_t block_x = BlockIndex(p.x()), block_y = BlockIndex(p.y());
     s.blocks.try_emplace(CellKey(block_x, block_y), Storage::Block{block_x, block_y, {}})
         .first->second.slots.push_back(static_cast<std::uint32_t>(s.points.size()));
