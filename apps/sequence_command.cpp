@@ -1,6 +1,7 @@
 #include "sequence_command.hpp"
 
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <iostream>
@@ -76,6 +77,21 @@ void PrintLocalisation(const SessionCounts& c) {
               << "guesses only\n";
 }
 
+// What the closures taught of the odometry (loop_closure.odometry_edges), one line.
+void PrintOdometryModel(const nlohmann::json& loop_closure) {
+  if (!loop_closure.contains("odometry_model")) return;
+  const nlohmann::json& m = loop_closure["odometry_model"];
+  if (!m.contains("heading_rad2_per_m")) {
+    std::cout << "odometry: not learned (no closure confirmed over a stretch with odometry)\n";
+    return;
+  }
+  std::cout << "odometry: learned from " << m["closures"] << " closures, heading "
+            << 1e3 * std::sqrt(m["heading_rad2_per_m"].get<double>()) << " mrad and position "
+            << 1e2 * std::sqrt(m["position_m2_per_m"].get<double>())
+            << " cm per √m, matched chain's covariance × " << m["matched_scale"].get<double>()
+            << "; " << m["edges_in_graph"] << " of its steps hold the graph\n";
+}
+
 void PrintOutcome(const SessionRun& run, const nlohmann::json& summary, const RunFolder& folder,
                   const OccupancyGrid* grid) {
   const SessionCounts& c = run.counts;
@@ -101,6 +117,7 @@ void PrintOutcome(const SessionRun& run, const nlohmann::json& summary, const Ru
               << " closures tried, " << l["closures_accepted"] << " accepted, "
               << l["closures_kept"] << " edges kept by the graph, " << l["map_renders"]
               << " map renders\n";
+    PrintOdometryModel(l);
   }
   std::cout << "wrote " << folder.directory() << "/{iterations.jsonl,trajectory.tum,map.pcd,"
             << (grid ? "map.pgm,map.yaml," : "") << (closing ? "graph.g2o," : "")

@@ -172,6 +172,24 @@ TEST(PoseGraph, SquaredErrorIsTheWhitenedDisagreementOfAnEdge) {
   EXPECT_NEAR(graph.SquaredError(edge), 1.0, 1e-9);
 }
 
+TEST(PoseGraph, AnEdgesInformationIsReplacedAndAnInactiveEdgeNoLongerPulls) {
+  PoseGraph graph;
+  graph.AddNode(Pose2D(0.0, 0.0, 0.0));
+  graph.AddNode(Pose2D(1.0, 0.0, 0.0));
+  graph.AddEdge({0, 1, Pose2D(1.0, 0.0, 0.0), Information(0.01, 0.01), EdgeKind::kSequential});
+  graph.AddEdge({0, 1, Pose2D(1.2, 0.0, 0.0), Information(0.01, 0.01), EdgeKind::kOdometry});
+  graph.Optimise();
+  EXPECT_NEAR(graph.nodes()[1].x_m, 1.1, 1e-4);  // equal weights: halfway (Ceres' tolerance)
+  graph.SetInformation(1, Information(0.001, 0.001));
+  graph.Optimise();
+  EXPECT_NEAR(graph.nodes()[1].x_m, 1.2 - 0.2 / 101.0, 1e-4);  // 100 times the information
+  graph.SetInformation(1, Information(0.001, 0.001), false);
+  graph.Optimise();
+  EXPECT_NEAR(graph.nodes()[1].x_m, 1.0, 1e-4);
+  EXPECT_THROW(graph.SetInformation(2, Information(0.01, 0.01)), std::invalid_argument);
+  EXPECT_THROW(graph.SetInformation(0, -Information(0.01, 0.01)), std::invalid_argument);
+}
+
 TEST(PoseGraph, InvalidEdgesAndNodesAreRefusedNamingTheProblem) {
   PoseGraph graph;
   graph.AddNode(Pose2D());

@@ -17,6 +17,14 @@ Eigen::Matrix3d Diagonal(double a, double b, double c) {
   return Eigen::Vector3d(a, b, c).asDiagonal();
 }
 
+// The Jacobian of a posture's inverse at T (written out here, apart from the library's).
+Eigen::Matrix3d InverseJacobian(const Pose2D& T) {
+  const double c = std::cos(T.yaw_rad), s = std::sin(T.yaw_rad);
+  Eigen::Matrix3d jacobian;
+  jacobian << -c, -s, s * T.x_m - c * T.y_m, s, -c, c * T.x_m + s * T.y_m, 0, 0, -1;
+  return jacobian;
+}
+
 // Nodes one metre apart along x, each edge with covariance diag(a, b, c).
 PoseGraph StraightChain(std::size_t nodes, const Eigen::Matrix3d& covariance) {
   PoseGraph graph;
@@ -37,14 +45,6 @@ TEST(RelativeCovariance, TwoStepsAlongXCarryTheFirstHeadingErrorIntoTheLateralVa
   expected << 2 * a, 0, 0, 0, 2 * b + c, c, 0, c, 2 * c;
   EXPECT_LT((covariance - expected).cwiseAbs().maxCoeff(), 1e-12) << covariance;
   EXPECT_TRUE(RelativeCovariance(graph, 1, 1)->isZero());
-}
-
-// The Jacobian of a posture's inverse at T (written out here, apart from the library's).
-Eigen::Matrix3d InverseJacobian(const Pose2D& T) {
-  const double c = std::cos(T.yaw_rad), s = std::sin(T.yaw_rad);
-  Eigen::Matrix3d jacobian;
-  jacobian << -c, -s, s * T.x_m - c * T.y_m, s, -c, c * T.x_m + s * T.y_m, 0, 0, -1;
-  return jacobian;
 }
 
 TEST(RelativeCovariance, WalkedBackwardsItIsTheCovarianceOfTheInversePosture) {
@@ -82,6 +82,29 @@ TEST(RelativeCovariance, AClosureShortensThePathAndUnjoinedNodesHaveNone) {
   graph.AddNode(Pose2D(50.0, 0.0, 0.0));
   EXPECT_FALSE(RelativeCovariance(graph, 0, 10).has_value());
   EXPECT_THROW(RelativeCovariance(graph, 0, 11), std::invalid_argument);
+}
+
+TEST(RelativeCovariance, AnOdometryEdgeBesideASequentialOneAddsItsInformation) {
+  const Eigen::Matrix3d sequential = Diagonal(4e-4, 1e-4, 2e-4);
+  PoseGraph graph = StraightChain(4, sequential);
+  const Eigen::Matrix3d alone = *RelativeCovariance(graph, 0, 3);
+  // The same information again beside every step, one of them walked from its far end: each
+  // step's covariance halves, and so does the chain's (first order, linear in the steps').
+  for (std::size_t i = 1; i < 4; ++i) {
+    if (i == 2)
+      graph.AddEdge({i, i - 1, Pose2D(-1.0, 0.0, 0.0),
+                     (InverseJacobian(Pose2D(1.0, 0.0, 0.0)) * sequential *
+                      InverseJacobian(Pose2D(1.0, 0.0, 0.0)).transpose())
+                         .inverse(),
+                     EdgeKind::kOdometry});
+    else
+      graph.AddEdge({i - 1, i, Pose2D(1.0, 0.0, 0.0), sequential.inverse(), EdgeKind::kOdometry});
+  }
+  const Eigen::Matrix3d both = *RelativeCovariance(graph, 0, 3);
+  EXPECT_LT((both - 0.5 * alone).cwiseAbs().maxCoeff(), 1e-12) << both << "\n" << alone;
+  // An inactive edge adds nothing.
+  graph.SetInformation(graph.edges().size() - 1, sequential.inverse(), false);
+  EXPECT_GT((*RelativeCovariance(graph, 0, 3))(1, 1), both(1, 1));
 }
 
 }  // namespace

@@ -311,6 +311,20 @@ void VisitLoopClosure(C& c, V& v) {
   v("loop_closure.sigma_floor_rad", l.sigma_floor_rad, Bounds{1e-6, 10}, "... heading σ, rad");
   v("loop_closure.huber_scale", l.graph.closure_loss_scale, Bounds{0, 1e6},
     "closures pull with a bounded force beyond this many σ (0: plain least squares)");
+  v("loop_closure.odometry_edges", l.odometry_edges,
+    "consecutive nodes are linked by the odometry too, weighed by how far the odometry and the "
+    "matched chain missed the closures confirmed so far (the odometry learned per log)");
+  v("loop_closure.odometry_turn_weight_m_per_rad", l.odometry.turn_weight_m_per_rad, Bounds{0, 1e3},
+    "odometry model: a radian of turn weighs on the heading like this many metres");
+  v("loop_closure.odometry_stretch_m", l.odometry.stretch_m, Bounds{1e-3, 1e6},
+    "odometry model: its position noise is fitted on stretches of this much path, m");
+  v("loop_closure.odometry_position_per_heading_m2", l.odometry.position_per_heading_m2,
+    Bounds{0, 1e3},
+    "odometry model: its position variance per metre is at least this times its heading's, m²");
+  v("loop_closure.odometry_floor_m", l.odometry.floor_m, Bounds{1e-9, 10},
+    "odometry model: added to each step's position σ, m ...");
+  v("loop_closure.odometry_floor_rad", l.odometry.floor_rad, Bounds{1e-9, 1},
+    "... and heading σ, rad");
   v("loop_closure.rejection_chi2", l.graph.closure_rejection_chi2, Bounds{0, 1e12},
     "a closure whose χ² (3 dof) stays above this after a solve is set aside (0: never)");
   v("loop_closure.render_min_shift_m", l.render_min_shift_m, Bounds{0, 1e3},

@@ -69,6 +69,17 @@ void PoseGraph::AddEdge(const PoseGraphEdge& edge) {
   edges_.push_back(edge);
 }
 
+void PoseGraph::SetInformation(std::size_t index, const Eigen::Matrix3d& information, bool active) {
+  if (index >= edges_.size())
+    throw std::invalid_argument("no pose graph edge " + std::to_string(index));
+  Eigen::Matrix3d root;
+  if (!SquareRootInformation(information, root))
+    throw std::invalid_argument("pose graph edge " + std::to_string(index) +
+                                ": information is not symmetric positive definite");
+  edges_[index].information = information;
+  edges_[index].active = active;
+}
+
 double PoseGraph::SquaredError(const PoseGraphEdge& edge) const {
   const Pose2D now = Between(nodes_.at(edge.from), nodes_.at(edge.to));
   const Eigen::Vector3d error(now.x_m - edge.T_from_to.x_m, now.y_m - edge.T_from_to.y_m,

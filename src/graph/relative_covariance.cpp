@@ -47,12 +47,12 @@ Touching ActiveEdgesByNode(const PoseGraph& graph) {
   return touching;
 }
 
-// The steps of the path of fewest active edges from `from` to `to` (breadth first), in order;
-// nothing when no path joins them.
-std::optional<std::vector<Step>> FewestEdges(const PoseGraph& graph, std::size_t from,
-                                             std::size_t to) {
+// The nodes of the path of fewest active edges from `from` to `to` (breadth first), both
+// included, in order; nothing when no path joins them.
+std::optional<std::vector<std::size_t>> FewestEdges(const PoseGraph& graph,
+                                                    const Touching& touching, std::size_t from,
+                                                    std::size_t to) {
   const std::vector<PoseGraphEdge>& edges = graph.edges();
-  const Touching touching = ActiveEdgesByNode(graph);
   std::vector<Step> reached_by(graph.nodes().size());
   std::vector<bool> seen(graph.nodes().size(), false);
   std::deque<std::size_t> frontier = {from};
@@ -71,11 +71,11 @@ std::optional<std::vector<Step>> FewestEdges(const PoseGraph& graph, std::size_t
     }
   }
   if (!seen[to]) return std::nullopt;
-  std::vector<Step> path;
+  std::vector<std::size_t> path = {to};
   for (std::size_t node = to; node != from;) {
     const Step step = reached_by[node];
-    path.push_back(step);
     node = step.forward ? edges[step.edge].from : edges[step.edge].to;
+    path.push_back(node);
   }
   std::reverse(path.begin(), path.end());
   return path;
@@ -90,6 +90,24 @@ Eigen::Matrix3d InverseCovariance(const Pose2D& T, const Eigen::Matrix3d& covari
   return jacobian * covariance * jacobian.transpose();
 }
 
+// The covariance of node `next`'s posture in node `at`'s frame from every active edge joining
+// the two (their informations summed, each edge walked backwards seen forwards).
+Eigen::Matrix3d StepCovariance(const PoseGraph& graph, const Touching& touching, std::size_t at,
+                               std::size_t next) {
+  const std::vector<Pose2D>& nodes = graph.nodes();
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+  for (std::size_t k = touching.first[at]; k < touching.first[at + 1]; ++k) {
+    const PoseGraphEdge& edge = graph.edges()[touching.edges[k]];
+    if (edge.from == at && edge.to == next) {
+      information += edge.information;
+    } else if (edge.from == next && edge.to == at) {
+      information +=
+          InverseCovariance(Between(nodes[next], nodes[at]), edge.information.inverse()).inverse();
+    }
+  }
+  return information.inverse();
+}
+
 }  // namespace
 
 Eigen::Matrix3d RotatedOutOf(const Eigen::Matrix3d& covariance, double yaw_rad) {
@@ -99,35 +117,32 @@ Eigen::Matrix3d RotatedOutOf(const Eigen::Matrix3d& covariance, double yaw_rad) 
   return rotation * covariance * rotation.transpose();
 }
 
+void CompoundedPosture::Append(const Pose2D& step, const Eigen::Matrix3d& step_covariance) {
+  const Pose2D after = T_start_end * step;
+  Eigen::Matrix3d jacobian = Eigen::Matrix3d::Identity();
+  jacobian(0, 2) = -(after.y_m - T_start_end.y_m);
+  jacobian(1, 2) = after.x_m - T_start_end.x_m;
+  covariance = jacobian * covariance * jacobian.transpose() +
+               RotatedOutOf(step_covariance, T_start_end.yaw_rad);
+  T_start_end = after;
+}
+
 std::optional<Eigen::Matrix3d> RelativeCovariance(const PoseGraph& graph, std::size_t from,
                                                   std::size_t to) {
   const std::vector<Pose2D>& nodes = graph.nodes();
   if (from >= nodes.size() || to >= nodes.size())
     throw std::invalid_argument("RelativeCovariance: node " + std::to_string(std::max(from, to)) +
                                 " out of range (" + std::to_string(nodes.size()) + " nodes)");
-  const std::optional<std::vector<Step>> path = FewestEdges(graph, from, to);
+  const Touching touching = ActiveEdgesByNode(graph);
+  const std::optional<std::vector<std::size_t>> path = FewestEdges(graph, touching, from, to);
   if (!path) return std::nullopt;
-  // Σₖ = J Σₖ₋₁ Jᵀ + R Σ_step Rᵀ: the posture so far moved by one step, whose covariance is given
-  // in the frame of the node it starts from.
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  std::size_t at = from;
-  for (const Step& step : *path) {
-    const PoseGraphEdge& edge = graph.edges()[step.edge];
-    const std::size_t next = step.forward ? edge.to : edge.from;
-    Eigen::Matrix3d step_covariance = edge.information.inverse();
-    if (!step.forward)
-      step_covariance =
-          InverseCovariance(Between(nodes[edge.from], nodes[edge.to]), step_covariance);
-    const Pose2D before = Between(nodes[from], nodes[at]);
-    const Pose2D after = Between(nodes[from], nodes[next]);
-    Eigen::Matrix3d jacobian = Eigen::Matrix3d::Identity();
-    jacobian(0, 2) = -(after.y_m - before.y_m);
-    jacobian(1, 2) = after.x_m - before.x_m;
-    covariance = jacobian * covariance * jacobian.transpose() +
-                 RotatedOutOf(step_covariance, before.yaw_rad);
-    at = next;
+  // The steps compounded at the nodes' current estimates, each from the node it starts at.
+  CompoundedPosture compounded;
+  for (std::size_t k = 0; k + 1 < path->size(); ++k) {
+    const std::size_t at = (*path)[k], next = (*path)[k + 1];
+    compounded.Append(Between(nodes[at], nodes[next]), StepCovariance(graph, touching, at, next));
   }
-  return 0.5 * (covariance + covariance.transpose());
+  return 0.5 * (compounded.covariance + compounded.covariance.transpose());
 }
 
 }  // namespace scanloc

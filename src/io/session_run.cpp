@@ -82,6 +82,20 @@ nlohmann::json SignatureSamples(const MapSignature& signature) {
   return samples;
 }
 
+// What the closures taught of the odometry: how many, the scales fitted to their misses (none
+// before the first), and how many odometry edges hold the graph.
+nlohmann::json OdometryModelSummary(const OdometryModel& model, const PoseGraph& graph) {
+  std::size_t edges = 0;
+  for (const PoseGraphEdge& edge : graph.edges())
+    edges += edge.kind == EdgeKind::kOdometry && edge.active;
+  nlohmann::json json = {{"closures", model.closures()}, {"edges_in_graph", edges}};
+  if (!model.learned()) return json;
+  json["position_m2_per_m"] = model.position_m2_per_m();
+  json["heading_rad2_per_m"] = model.heading_rad2_per_m();
+  json["matched_scale"] = model.matched_scale();
+  return json;
+}
+
 std::size_t ClosuresKept(const PoseGraph& graph) {
   std::size_t kept = 0;
   for (const PoseGraphEdge& edge : graph.edges())
@@ -271,6 +285,8 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
                                {"closures_accepted", c.closures_accepted},
                                {"closures_kept", ClosuresKept(graph)},
                                {"map_renders", c.map_renders}};
+    if (const OdometryModel* model = run.session->odometry_model())
+      summary["loop_closure"]["odometry_model"] = OdometryModelSummary(*model, graph);
   }
   if (c.replayed > 0) summary["resumed_after_records"] = c.replayed;
   if (!c.failure.empty()) summary["failed"] = c.failure;

@@ -29,6 +29,17 @@ Eigen::Matrix3d EdgeInformation(const std::optional<Eigen::Matrix3d>& covariance
   return 0.5 * (information + information.transpose());
 }
 
+// The odometry holds a motion's heading when the model says it knows it at least as well as a
+// matched step knows its own (in the graph's units). Only then does its edge join the graph: an
+// odometry weaker than the matching in heading would add little, and what its model does not
+// describe (slips in fast turns, drifts that grow with the path) would bend the chain by many
+// small consistent pulls. The heading is what carries a chain off; the model's position noise,
+// fitted on stretches, still holds some of the matching's own jitter.
+bool OdometryHoldsHeading(const Eigen::Matrix3d& odometry_covariance,
+                          const Eigen::Matrix3d& matched_information) {
+  return odometry_covariance(2, 2) <= matched_information.inverse()(2, 2);
+}
+
 // Another valid refinement lies farther than distinct_m or distinct_rad from the kept one.
 bool Ambiguous(const LocalisationResult& result, const RankedCandidate& kept, double distinct_m,
                double distinct_rad) {
@@ -97,34 +108,41 @@ void LoopClosureOptions::Validate() const {
   require(render_min_shift_m >= 0.0, "render_min_shift_m must be >= 0");
   require(tracking_path_m >= 0.0 && tracking_min_nodes >= 0,
           "tracking_path_m and tracking_min_nodes must be >= 0");
+  odometry.Validate();
 }
 
 LoopCloser::LoopCloser(const LoopClosureOptions& options, const LaserMounting& mounting)
-    : options_(options), mounting_(mounting) {
+    : options_(options), mounting_(mounting), odometry_model_(options.odometry) {
   options_.Validate();
 }
 
 void LoopCloser::AddNode(std::size_t iteration, const LaserScan& scan, const Pose2D& T_world_robot,
-                         const std::optional<Eigen::Matrix3d>& laser_covariance) {
+                         const std::optional<Eigen::Matrix3d>& laser_covariance,
+                         const std::optional<Pose2D>& odometry) {
   double path_m = 0.0;
   if (!nodes_.empty())
     path_m = nodes_.back().path_m + Distance(graph_.nodes().back(), T_world_robot);
-  nodes_.push_back({iteration, scan, path_m});
+  nodes_.push_back({iteration, scan, path_m, odometry, 0, std::nullopt});
   const std::size_t node = graph_.AddNode(T_world_robot);
   ++nodes_since_attempt_;
   if (node == 0) return;
   const Pose2D& from = graph_.nodes()[node - 1];
+  nodes_.back().sequential_edge = graph_.edges().size();
   graph_.AddEdge({node - 1, node, Between(from, graph_.nodes()[node]),
                   EdgeInformation(laser_covariance, from.yaw_rad, options_.sigma_floor_m,
                                   options_.sigma_floor_rad),
                   EdgeKind::kSequential});
+  if (odometry_model_.learned()) WeighOdometry(node);
 }
 
-void LoopCloser::Anchor(std::size_t iteration, const Pose2D& T_world_robot) {
+void LoopCloser::Anchor(std::size_t iteration, const Pose2D& T_world_robot, bool confirmed,
+                        const std::optional<Pose2D>& odometry) {
   if (nodes_.empty()) return;
   if (anchors_.size() <= iteration) anchors_.resize(iteration + 1);
   const std::size_t node = nodes_.size() - 1;
-  anchors_[iteration] = Anchoring{node, Between(graph_.nodes()[node], T_world_robot)};
+  anchors_[iteration] = Anchoring{node, Between(graph_.nodes()[node], T_world_robot), std::nullopt};
+  if (!confirmed && odometry && nodes_[node].odometry)
+    anchors_[iteration]->T_node_robot_odometry = Between(*nodes_[node].odometry, *odometry);
 }
 
 // The old nodes the scan is matched on: the nearest node old enough, and the nodes laid just
@@ -330,6 +348,7 @@ bool LoopCloser::SolveLater(ClosureAttempt& attempt) const {
 // local map's error, so together they are one measurement: each carries 1/n of its information,
 // in the solve and in the χ² test after it.
 void LoopCloser::Solve(ClosureAttempt& attempt) {
+  if (options_.odometry_edges) LearnOdometry(pending_.back());
   for (PoseGraphEdge& pending : pending_)
     pending.information /= static_cast<double>(pending_.size());
   attempt.solve_deferred = SolveLater(attempt);
@@ -358,6 +377,7 @@ PoseGraphSummary LoopCloser::SolveGraph(double& largest_shift_m, std::size_t hol
   unsolved_ = false;
   unsolved_from_ = kNoNode;
   partly_solved_ = hold_before > 0;
+  reweighed_ = reweighed_ && hold_before > 0;
   local_map_.reset();  // the solve moves the nodes it was rendered from
   const std::vector<Pose2D> before = graph_.nodes();
   const PoseGraphSummary summary = graph_.Optimise(options_.graph, hold_before);
@@ -370,10 +390,87 @@ PoseGraphSummary LoopCloser::SolveGraph(double& largest_shift_m, std::size_t hol
 // The final solve, of the whole graph, when closures joined it unsolved or the solves since the
 // last whole one held the older nodes.
 bool LoopCloser::Finish() {
-  if (!unsolved_ && !partly_solved_) return false;
+  if (!unsolved_ && !partly_solved_ && !reweighed_) return false;
   double largest_shift_m = 0.0;
   SolveGraph(largest_shift_m, 0);
   return largest_shift_m > options_.render_min_shift_m;
+}
+
+std::optional<ChainMisses> LoopCloser::Chains(std::size_t a, std::size_t b,
+                                              const std::optional<Pose2D>& closure) const {
+  ChainMisses misses;
+  misses.path_m = nodes_[b].path_m - nodes_[a].path_m;
+  CompoundedPosture matched, position, heading, floor;
+  for (std::size_t k = a + 1; k <= b; ++k) {
+    if (!nodes_[k - 1].odometry || !nodes_[k].odometry) return std::nullopt;
+    const PoseGraphEdge& sequential = graph_.edges()[nodes_[k].sequential_edge];
+    matched.Append(sequential.T_from_to, sequential.information.inverse());
+    const Pose2D step = Between(*nodes_[k - 1].odometry, *nodes_[k].odometry);
+    const OdometryStepShape shape = odometry_model_.Shape(step);
+    position.Append(step, shape.position);
+    heading.Append(step, shape.heading);
+    floor.Append(step, shape.floor);
+  }
+  auto miss = [](const Pose2D& measured, const Pose2D& chain) {
+    return Eigen::Vector3d(measured.x_m - chain.x_m, measured.y_m - chain.y_m,
+                           NormalizeAngle(measured.yaw_rad - chain.yaw_rad));
+  };
+  const Pose2D& odometry = position.T_start_end;
+  misses.matched_miss = closure ? miss(*closure, matched.T_start_end) : Eigen::Vector3d::Zero();
+  misses.odometry_miss = miss(closure ? *closure : matched.T_start_end, odometry);
+  misses.matched_covariance = matched.covariance;
+  misses.odometry_per_position = position.covariance;
+  misses.odometry_per_heading = heading.covariance;
+  misses.odometry_floor = floor.covariance;
+  return misses;
+}
+
+void LoopCloser::LearnOdometry(const PoseGraphEdge& closure) {
+  // The closure measures `to` seen from `from`; the chains run from the older node.
+  const std::optional<ChainMisses> misses =
+      closure.from < closure.to ? Chains(closure.from, closure.to, closure.T_from_to)
+                                : Chains(closure.to, closure.from, closure.T_from_to.Inverse());
+  if (!misses) return;  // a node between them has no odometry
+  taught_.push_back(*misses);
+  ExtendStretches();
+  const std::size_t first = taught_.size() - std::min(taught_.size(), kMaxTaught);
+  odometry_model_.Learn({taught_.begin() + static_cast<std::ptrdiff_t>(first), taught_.end()},
+                        stretches_);
+  WeighOdometry();
+}
+
+void LoopCloser::ExtendStretches() {
+  for (std::size_t k = stretch_start_ + 1; k < nodes_.size(); ++k) {
+    if (!nodes_[k - 1].odometry || !nodes_[k].odometry) {
+      stretch_start_ = k;
+      continue;
+    }
+    if (nodes_[k].path_m - nodes_[stretch_start_].path_m < options_.odometry.stretch_m ||
+        k - stretch_start_ < 2)
+      continue;
+    stretches_.push_back(*Chains(stretch_start_, k, std::nullopt));
+    stretch_start_ = k;
+  }
+}
+
+void LoopCloser::WeighOdometry(std::size_t first_node) {
+  for (std::size_t k = std::max<std::size_t>(first_node, 1); k < nodes_.size(); ++k) {
+    Node& node = nodes_[k];
+    if (!nodes_[k - 1].odometry || !node.odometry) continue;
+    const Pose2D step = Between(*nodes_[k - 1].odometry, *node.odometry);
+    const Eigen::Matrix3d covariance = odometry_model_.StepCovariance(step);
+    Eigen::Matrix3d information = covariance.inverse();
+    information = 0.5 * (information + information.transpose());
+    const bool active =
+        OdometryHoldsHeading(covariance, graph_.edges()[node.sequential_edge].information);
+    if (node.odometry_edge) {
+      graph_.SetInformation(*node.odometry_edge, information, active);
+    } else if (active) {
+      node.odometry_edge = graph_.edges().size();
+      graph_.AddEdge({k - 1, k, step, information, EdgeKind::kOdometry});
+    }
+  }
+  reweighed_ = true;
 }
 
 void LoopCloser::SetPriorMap(const PointMap& map) {
@@ -416,10 +513,22 @@ std::optional<Pose2D> LoopCloser::NewestNode() const {
   return graph_.nodes().back();
 }
 
+// An unconfirmed scan follows the odometry from its node where the odometry holds the heading of
+// that motion (as an odometry edge must to join the graph).
+bool LoopCloser::ByOdometry(const Anchoring& anchor) const {
+  if (!anchor.T_node_robot_odometry || !odometry_model_.learned() || anchor.node == 0) return false;
+  return OdometryHoldsHeading(odometry_model_.StepCovariance(*anchor.T_node_robot_odometry),
+                              graph_.edges()[nodes_[anchor.node].sequential_edge].information);
+}
+
 std::vector<std::optional<Pose2D>> LoopCloser::CorrectedPostures() const {
   std::vector<std::optional<Pose2D>> postures(anchors_.size());
-  for (std::size_t i = 0; i < anchors_.size(); ++i)
-    if (anchors_[i]) postures[i] = graph_.nodes()[anchors_[i]->node] * anchors_[i]->T_node_robot;
+  for (std::size_t i = 0; i < anchors_.size(); ++i) {
+    if (!anchors_[i]) continue;
+    postures[i] = graph_.nodes()[anchors_[i]->node] * (ByOdometry(*anchors_[i])
+                                                           ? *anchors_[i]->T_node_robot_odometry
+                                                           : anchors_[i]->T_node_robot);
+  }
   return postures;
 }
 

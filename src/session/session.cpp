@@ -124,7 +124,7 @@ IterationRecord Session::Step(const Iteration& iteration, const RecordedIteratio
              kept && kept->refinement && kept->refinement->has_covariance) {
     covariance = kept->refinement->covariance;
   }
-  MaybeCloseLoop(record, iteration.scan, covariance);
+  MaybeCloseLoop(record, iteration, covariance);
   if (iteration.odometry) last_odometry_ = iteration.odometry;
   ++count_;
   record.map_points = point_map_.live_size();
@@ -351,11 +351,14 @@ void Session::MaybeExtend(IterationRecord& record, const LaserScan& scan) {
 // the newest node, and a closure is tried when one is due. After an accepted one that moved a node
 // more than render_min_shift_m, the session goes on from the corrected node, on the map rendered
 // again from every node.
-void Session::MaybeCloseLoop(IterationRecord& record, const LaserScan& scan,
+void Session::MaybeCloseLoop(IterationRecord& record, const Iteration& iteration,
                              const std::optional<Eigen::Matrix3d>& covariance) {
   if (!options_.loop_closure.enabled) return;
-  if (record.inserted) loop_.AddNode(record.index, scan, record.T_world_robot, covariance);
-  loop_.Anchor(record.index, record.T_world_robot);
+  if (record.inserted)
+    loop_.AddNode(record.index, iteration.scan, record.T_world_robot, covariance,
+                  iteration.odometry);
+  loop_.Anchor(record.index, record.T_world_robot, record.validated || record.skipped,
+               iteration.odometry);
   if (!record.inserted) return;
   record.closure = loop_.MaybeClose(localisation_, point_map_.options());
   if (!record.closure || !record.closure->rendered) {
@@ -407,6 +410,10 @@ std::vector<std::optional<Pose2D>> Session::CorrectedPostures() const {
 
 const PoseGraph* Session::pose_graph() const {
   return options_.loop_closure.enabled ? &loop_.graph() : nullptr;
+}
+
+const OdometryModel* Session::odometry_model() const {
+  return options_.loop_closure.enabled ? &loop_.odometry_model() : nullptr;
 }
 
 }  // namespace scanloc

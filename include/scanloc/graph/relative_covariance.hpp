@@ -1,8 +1,10 @@
 #pragma once
 // How well a pose graph knows one node's posture relative to another: the covariance compounded
-// along the path of fewest active edges between them (each edge's covariance is the inverse of its
-// information, composed through the relative postures at the nodes' current estimates, first
-// order). A loop closed since lowers it, because the path then runs through the closure.
+// along the path of fewest active edges between them (each step's covariance is the inverse of
+// the information of every active edge joining its two nodes, a sequential edge and an odometry
+// edge beside it together, composed through the relative postures at the nodes' current
+// estimates, first order). A loop closed since lowers it, because the path then runs through the
+// closure.
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -20,5 +22,15 @@ std::optional<Eigen::Matrix3d> RelativeCovariance(const PoseGraph& graph, std::s
 
 // A covariance given in a frame at heading `yaw_rad`, seen in the frame that frame lies in.
 Eigen::Matrix3d RotatedOutOf(const Eigen::Matrix3d& covariance, double yaw_rad);
+
+// A posture compounded from relative steps, T_start_end, with its covariance (x m, y m, yaw rad,
+// in the start's frame) to first order: Σ ← J Σ Jᵀ + R Σ_step Rᵀ, J carrying the heading error so
+// far over the step's displacement, R the end's heading.
+struct CompoundedPosture {
+  Pose2D T_start_end;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  // Moves the end by `step` (T_end_next), whose covariance is given in the end's frame.
+  void Append(const Pose2D& step, const Eigen::Matrix3d& step_covariance);
+};
 
 }  // namespace scanloc

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "scanloc/geometry/laser_scan.hpp"
+#include "scanloc/graph/odometry_model.hpp"
 #include "scanloc/graph/pose_graph.hpp"
 #include "scanloc/maps/point_map.hpp"
 #include "scanloc/session/localisation.hpp"
@@ -71,6 +72,11 @@ struct LoopClosureOptions {
   double sigma_floor_m = 0.005;
   double sigma_floor_rad = 0.001;
   PoseGraphOptions graph;
+  // Consecutive nodes are linked by their odometry too, once a closure has shown how good it is
+  // (OdometryModel): each confirmed closure teaches the model, and every odometry edge is weighed
+  // again before the solve.
+  bool odometry_edges = true;
+  OdometryModelOptions odometry;
   // After a solve the map is rendered again from the nodes when one of them moved more than this.
   // A confirmed closure predicted to move its node by less (the first-order correction: the
   // chain's covariance weighed against the closure's) and that the graph can explain (χ² within
@@ -122,11 +128,19 @@ class LoopCloser {
   LoopCloser(const LoopClosureOptions& options, const LaserMounting& mounting);
 
   // The scan of record `iteration` extended the map at T_world_robot: it becomes a node, linked
-  // to the previous one with `laser_covariance` (of its refinement, or empty when it has none).
+  // to the previous one with `laser_covariance` (of its refinement, or empty when it has none),
+  // and by the odometry (the robot's odometry pose at the scan, when the log has one) once the
+  // odometry model has learned from a closure.
   void AddNode(std::size_t iteration, const LaserScan& scan, const Pose2D& T_world_robot,
-               const std::optional<Eigen::Matrix3d>& laser_covariance);
-  // Every record's posture, remembered relative to the newest node (call after AddNode).
-  void Anchor(std::size_t iteration, const Pose2D& T_world_robot);
+               const std::optional<Eigen::Matrix3d>& laser_covariance,
+               const std::optional<Pose2D>& odometry = std::nullopt);
+  // Every record's posture, remembered relative to the newest node (call after AddNode). A scan
+  // the Likelihood Test did not confirm also remembers its odometry relative to the node's: where
+  // the odometry model says the odometry knows the motion from the node at least as well as a
+  // matched step knows its own, the corrected posture follows the odometry, which the scan could
+  // not disprove, rather than an unconfirmed match.
+  void Anchor(std::size_t iteration, const Pose2D& T_world_robot, bool confirmed = true,
+              const std::optional<Pose2D>& odometry = std::nullopt);
   // Tries a closure for the newest node when one is due. On an accepted one, the graph is solved
   // and the caller renders the map again when the attempt says so.
   std::optional<ClosureAttempt> MaybeClose(const LocalisationOptions& localisation,
@@ -155,6 +169,7 @@ class LoopCloser {
   std::vector<std::optional<Pose2D>> CorrectedPostures() const;
 
   const PoseGraph& graph() const { return graph_; }
+  const OdometryModel& odometry_model() const { return odometry_model_; }
   const std::vector<ClosureAttempt>& attempts() const { return attempts_; }
   const LoopClosureOptions& options() const { return options_; }
 
@@ -163,10 +178,14 @@ class LoopCloser {
     std::size_t iteration = 0;
     LaserScan scan;
     double path_m = 0.0;  // path driven from the first node to this one
+    std::optional<Pose2D> odometry;
+    std::size_t sequential_edge = 0;  // the edge from the previous node (none for the first)
+    std::optional<std::size_t> odometry_edge;  // the odometry's, beside it
   };
   struct Anchoring {
     std::size_t node = 0;
     Pose2D T_node_robot;
+    std::optional<Pose2D> T_node_robot_odometry;  // of an unconfirmed scan
   };
 
   struct PriorPoints {
@@ -174,6 +193,7 @@ class LoopCloser {
     std::vector<double> spacings_m;
   };
 
+  bool ByOdometry(const Anchoring& anchor) const;
   std::vector<std::size_t> OldNodesNear(const Pose2D& T_world_robot, double path_m) const;
   std::optional<ClosureAttempt> Try(const LocalisationOptions& localisation,
                                     const PointMapOptions& map_options);
@@ -184,10 +204,32 @@ class LoopCloser {
   bool SolveLater(ClosureAttempt& attempt) const;
   void Solve(ClosureAttempt& attempt);
   PoseGraphSummary SolveGraph(double& largest_shift_m, std::size_t hold_before);
+  // The odometry model taught by one more confirmed closure (when every node it spans has
+  // odometry), and every odometry edge weighed again.
+  void LearnOdometry(const PoseGraphEdge& closure);
+
+  // The matched and the odometry chains from node a to node b (a < b), against `closure` (the
+  // posture of b seen from a) when given; nothing when a node between them has no odometry.
+  std::optional<ChainMisses> Chains(std::size_t a, std::size_t b,
+                                    const std::optional<Pose2D>& closure) const;
+  // The chain cut into stretches of odometry.stretch_m of path (the odometry chain against the
+  // matched chain over each): those completed since the last call join stretches_.
+  void ExtendStretches();
+  // The odometry edges into the nodes from `first_node` on added, or weighed again, with the
+  // model as it stands; the next Finish then solves the whole graph.
+  void WeighOdometry(std::size_t first_node = 1);
 
   LoopClosureOptions options_;
   LaserMounting mounting_;
   PoseGraph graph_;
+  OdometryModel odometry_model_;
+  std::vector<ChainMisses> taught_;     // of each closure the odometry model learned from
+  std::vector<ChainMisses> stretches_;  // completed so far
+  std::size_t stretch_start_ = 0;       // the node the stretch under way starts at
+  // The newest closures the model learns from: the cost of learning stays bounded per closure
+  // however many a long session confirms, and the model follows an odometry that changes.
+  static constexpr std::size_t kMaxTaught = 20;
+  bool reweighed_ = false;  // odometry edges weighed again since the last whole solve
   std::vector<Node> nodes_;
   std::vector<std::optional<Anchoring>> anchors_;  // by record index
   std::vector<ClosureAttempt> attempts_;

@@ -120,6 +120,8 @@ class ScanProcessor {
   virtual std::optional<MapSignature> map_signature() const { return {}; }
   // The pose graph, when the processor keeps one.
   virtual const PoseGraph* pose_graph() const { return nullptr; }
+  // The odometry model its loop closures taught, when the processor keeps a pose graph.
+  virtual const OdometryModel* odometry_model() const { return nullptr; }
 };
 
 }  // namespace scanloc

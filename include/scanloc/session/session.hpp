@@ -155,6 +155,7 @@ class Session : public ScanProcessor {
   const LoopCloser& loop_closer() const { return loop_; }
   std::vector<std::optional<Pose2D>> CorrectedPostures() const override;
   const PoseGraph* pose_graph() const override;
+  const OdometryModel* odometry_model() const override;
   std::optional<MapSignature> map_signature() const override { return map_signature_; }
 
  private:
@@ -181,7 +182,7 @@ class Session : public ScanProcessor {
   // The drift after a localised scan, confirmed or not; `was_lost` before it.
   void AfterLocalised(IterationRecord& record, const Iteration& iteration, bool was_lost);
   void MaybeExtend(IterationRecord& record, const LaserScan& scan);
-  void MaybeCloseLoop(IterationRecord& record, const LaserScan& scan,
+  void MaybeCloseLoop(IterationRecord& record, const Iteration& iteration,
                       const std::optional<Eigen::Matrix3d>& covariance);
   // With loop_closure.tracking_path_m: the session tracks against the newest nodes only.
   bool Tracking() const;

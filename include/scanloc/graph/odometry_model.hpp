@@ -1,0 +1,110 @@
+#pragma once
+// How good a log's odometry is, learned from the log itself. Each confirmed loop closure measures
+// the posture of one node seen from an older one directly, to a few centimetres. The same
+// relative posture compounded along the chain of odometry steps, and along the chain of matched
+// steps (the session's sequential edges), misses it by what each chain drifted over the loop.
+// Those misses say how fast each chain drifts, per metre driven and per radian turned, on this
+// log: perfect odometry misses by the closure's own few centimetres, drifting odometry by metres,
+// and the matched chain by what the scan matching accumulated. The odometry steps then join the
+// pose graph beside the matched ones with a covariance in the graph's own units (the refinement's
+// covariance, which knows the scan's noise but not the map's): the graph follows whichever chain
+// the loops showed to drift less, and both as far as they are equally good.
+//
+// The model of an odometry step of length d metres and turn Δθ radians (covariance in the step's
+// start frame): position variance λ_t·d on x and y, heading variance λ_r·(d + w·|Δθ|), plus the
+// floors. The scales are fitted robustly: the median of squared misses, each whitened by the
+// covariance the model predicts for it, meets the median of the χ² it would follow.
+// - λ_s, the matched chain's scale (how much the refinement's covariance understates its drift):
+//   on the closures' misses of the matched chain, 3 degrees of freedom.
+// - λ_r (rad²/m): in heading, from three sources compared two by two (the closures against both
+//   chains, the stretches below the odometry chain against the matched one), each contributing a
+//   variance of its own (the closure's alike for every closure): variance_components.hpp.
+// - λ_t (m²/m): not from the closures, whose position misses the heading's errors dominate over
+//   any loop (they grow with the cube of its length, the position's own with its length), but
+//   from stretches of the path: the odometry chain against the matched chain over each stretch
+//   of stretch_m, 2 degrees of freedom, the heading's part (at λ_r) and the matched chain's (at
+//   λ_s) counted in. Stretches, not single steps: a scan matched on the map errs by a jitter that
+//   consecutive steps undo, which would pass for the odometry's noise step by step but does not
+//   grow with the stretch, as the odometry's noise does. At least position_per_heading_m2·λ_r.
+// Odometry steps enter the graph as (model) / λ_s, in the graph's units.
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <vector>
+
+#include "scanloc/geometry/pose2d.hpp"
+
+namespace scanloc {
+
+struct OdometryModelOptions {
+  // A radian of turn weighs on the heading like this many metres driven (wheels slip in turns).
+  double turn_weight_m_per_rad = 1.0;
+  // Added to every step's standard deviations, in the world's units: what a closure measured to a
+  // few centimetres can neither confirm nor refute.
+  double floor_m = 0.001;
+  double floor_rad = 0.0002;
+  // The stretches of path the odometry's position noise is fitted on, m.
+  double stretch_m = 10.0;
+  // The position noise per metre is at least this times the heading's (m²/m per rad²/m): a
+  // differential drive's wheels, each slipping alike, turn it by their difference over the track
+  // and move it by their mean, so that the two variances stand as (track / 2)², 0.0625 m² for a
+  // 0.5 m track. Where the stretches' position misses are all the heading's doing, this keeps a
+  // noisy odometry's position from passing for exact.
+  double position_per_heading_m2 = 0.0625;
+  void Validate() const;
+};
+
+// What one confirmed closure says of the two chains joining its nodes: the closure's measurement
+// minus each chain's compounded posture (x m, y m in the old node's frame, yaw rad), and each
+// chain's covariance to first order: the matched chain's from its edges' information, the
+// odometry chain's per unit of λ_t, per unit of λ_r, and from the floors alone. For a stretch,
+// odometry_miss is the odometry chain minus the matched chain (there is no closure).
+struct ChainMisses {
+  double path_m = 0.0;
+  Eigen::Vector3d matched_miss = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d matched_covariance = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d odometry_miss = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d odometry_per_position = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d odometry_per_heading = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d odometry_floor = Eigen::Matrix3d::Identity();
+};
+
+// One odometry step's covariance split by what it scales with (the sum is λ_t·position +
+// λ_r·heading + floor).
+struct OdometryStepShape {
+  Eigen::Matrix3d position, heading, floor;
+};
+
+class OdometryModel {
+ public:
+  explicit OdometryModel(const OdometryModelOptions& options);
+
+  // The step `increment` (T_from_to of the odometry between two nodes) split as above.
+  OdometryStepShape Shape(const Pose2D& increment) const;
+  // The scales fitted again, each time a closure is confirmed, to the misses of the closures
+  // confirmed so far and of the stretches of the chain so far.
+  void Learn(std::vector<ChainMisses> closures, std::vector<ChainMisses> stretches);
+
+  // True once a closure taught the model.
+  bool learned() const { return !misses_.empty(); }
+  std::size_t closures() const { return misses_.size(); }
+  // The covariance of an odometry step in the graph's units (divided by the matched chain's
+  // scale). Only meaningful once learned().
+  Eigen::Matrix3d StepCovariance(const Pose2D& increment) const;
+
+  double position_m2_per_m() const { return position_; }
+  double heading_rad2_per_m() const { return heading_; }
+  double matched_scale() const { return matched_; }
+
+ private:
+  void Fit();
+
+  OdometryModelOptions options_;
+  std::vector<ChainMisses> misses_;
+  std::vector<ChainMisses> stretches_;
+  double position_ = 0.0;  // λ_t
+  double heading_ = 0.0;   // λ_r
+  double matched_ = 1.0;   // λ_s
+};
+
+}  // namespace scanloc

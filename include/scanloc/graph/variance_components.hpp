@@ -1,0 +1,26 @@
+#pragma once
+// Variance components: several sources of error, each contributing a variance that is a known
+// shape times an unknown scale, observed only through differences of their measurements. Given
+// squared misses, each expected to be known + Σ_j design_j · scale_j, it finds the scales (all
+// ≥ 0) by iteratively reweighted least squares: each squared miss weighed by the inverse square
+// of the variance the scales predict for it (a squared Gaussian's variance is twice the square
+// of its own), misses beyond the 99.9 % quantile of χ² with one degree of freedom left out once
+// the fit has settled. Three sources compared two by two (the three-cornered hat) tell each one's
+// scale apart, where one comparison alone gives only their sum.
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace scanloc {
+
+struct VarianceObservation {
+  double squared_miss = 0.0;
+  double known = 0.0;      // the part of its expected value no scale multiplies
+  Eigen::VectorXd design;  // what each scale multiplies (one entry per scale, >= 0)
+};
+
+// The scales, one per design entry (all observations have as many). Zero for a scale no
+// observation needs; empty without observations.
+Eigen::VectorXd FitVarianceComponents(const std::vector<VarianceObservation>& observations);
+
+}  // namespace scanloc

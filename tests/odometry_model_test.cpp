@@ -1,0 +1,135 @@
+// The odometry model learned from closures and stretches of a synthetic drive: a perfect odometry
+// is found far more precise than the matched chain, a drifting one as noisy as it is, and the
+// matched chain's scale as understated as it was made.
+
+#include "scanloc/graph/odometry_model.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include "scanloc/graph/relative_covariance.hpp"
+
+namespace scanloc {
+namespace {
+
+// The graph-unit covariance of every matched step: the real one is 9 times larger.
+const Eigen::Matrix3d kMatchedCovariance = Eigen::Vector3d(2.5e-5, 2.5e-5, 1e-6).asDiagonal();
+constexpr double kMatchedScale = 9.0;
+
+struct Drive {
+  std::vector<Pose2D> truth_steps, matched_steps, odometry_steps;
+};
+
+// 600 steps of 0.9 m turning by up to ±0.3 rad (seed 9). The matched steps err by the matched
+// covariance times its scale; the odometry's heading by `heading_rad2_per_m` per metre and its
+// position by `position_m2_per_m`.
+Drive MakeDrive(double heading_rad2_per_m, double position_m2_per_m) {
+  std::mt19937 random(9);
+  std::uniform_real_distribution<double> turn(-0.3, 0.3);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  Drive drive;
+  const Eigen::Vector3d matched_sigma = (kMatchedScale * kMatchedCovariance.diagonal()).cwiseSqrt();
+  for (int k = 0; k < 600; ++k) {
+    const Pose2D step(0.9, 0.0, turn(random));
+    drive.truth_steps.push_back(step);
+    drive.matched_steps.push_back(Pose2D(step.x_m + matched_sigma(0) * unit(random),
+                                         step.y_m + matched_sigma(1) * unit(random),
+                                         step.yaw_rad + matched_sigma(2) * unit(random)));
+    const double p = std::sqrt(position_m2_per_m * 0.9);
+    const double h = std::sqrt(heading_rad2_per_m * (0.9 + std::abs(step.yaw_rad)));
+    drive.odometry_steps.push_back(Pose2D(step.x_m + p * unit(random), step.y_m + p * unit(random),
+                                          step.yaw_rad + h * unit(random)));
+  }
+  return drive;
+}
+
+// The misses of steps [a, b) against the truth's relative posture plus `closure_noise` (a closure)
+// or, without it, of the odometry chain against the matched one (a stretch).
+ChainMisses Misses(const Drive& drive, const OdometryModel& model, int a, int b,
+                   const std::optional<Eigen::Vector3d>& closure_noise) {
+  CompoundedPosture truth, matched, position, heading, floor;
+  for (int k = a; k < b; ++k) {
+    truth.Append(drive.truth_steps[k], Eigen::Matrix3d::Zero());
+    matched.Append(drive.matched_steps[k], kMatchedCovariance);
+    const OdometryStepShape shape = model.Shape(drive.odometry_steps[k]);
+    position.Append(drive.odometry_steps[k], shape.position);
+    heading.Append(drive.odometry_steps[k], shape.heading);
+    floor.Append(drive.odometry_steps[k], shape.floor);
+  }
+  auto miss = [](const Pose2D& measured, const Pose2D& chain) {
+    return Eigen::Vector3d(measured.x_m - chain.x_m, measured.y_m - chain.y_m,
+                           NormalizeAngle(measured.yaw_rad - chain.yaw_rad));
+  };
+  Pose2D measured = matched.T_start_end;
+  if (closure_noise)
+    measured =
+        truth.T_start_end * Pose2D((*closure_noise)(0), (*closure_noise)(1), (*closure_noise)(2));
+  ChainMisses m;
+  m.path_m = 0.9 * (b - a);
+  m.matched_miss = closure_noise ? miss(measured, matched.T_start_end) : Eigen::Vector3d::Zero();
+  m.odometry_miss = miss(measured, position.T_start_end);
+  m.matched_covariance = matched.covariance;
+  m.odometry_per_position = position.covariance;
+  m.odometry_per_heading = heading.covariance;
+  m.odometry_floor = floor.covariance;
+  return m;
+}
+
+// Closures of 20–60 steps every 30 steps (2 cm, 5 mrad of their own error, seed 4), stretches of
+// 12 steps (10.8 m) along the whole drive.
+OdometryModel Learned(const Drive& drive) {
+  OdometryModel model{OdometryModelOptions{}};
+  std::mt19937 random(4);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  std::vector<ChainMisses> closures, stretches;
+  for (int b = 60; b <= 600; b += 30) {
+    const int a = b - 20 - (b / 30 % 3) * 20;
+    closures.push_back(
+        Misses(drive, model, a, b,
+               Eigen::Vector3d(0.02 * unit(random), 0.02 * unit(random), 0.005 * unit(random))));
+  }
+  for (int a = 0; a + 12 <= 600; a += 12) stretches.push_back(Misses(drive, model, a, a + 12, {}));
+  model.Learn(closures, stretches);
+  return model;
+}
+
+TEST(OdometryModel, APerfectOdometryIsLearnedTenTimesMorePreciseInHeadingThanAMatchedStep) {
+  const OdometryModel model = Learned(MakeDrive(0.0, 0.0));
+  ASSERT_TRUE(model.learned());
+  EXPECT_EQ(model.closures(), 19u);
+  EXPECT_LT(model.heading_rad2_per_m(), 1e-6);
+  EXPECT_NEAR(model.matched_scale(), kMatchedScale, 0.5 * kMatchedScale);
+  // In the graph's units, beside the matched step's 1e-6 rad².
+  EXPECT_LT(model.StepCovariance(Pose2D(0.9, 0.0, 0.2))(2, 2), 0.1 * kMatchedCovariance(2, 2));
+}
+
+TEST(OdometryModel, ADriftingOdometryIsLearnedAsNoisyAsItIsWithinHalf) {
+  const double heading = 1e-4, position = 4e-4;
+  const OdometryModel model = Learned(MakeDrive(heading, position));
+  EXPECT_NEAR(model.heading_rad2_per_m(), heading, 0.5 * heading);
+  EXPECT_NEAR(model.position_m2_per_m(), position, 0.5 * position);
+  EXPECT_NEAR(model.matched_scale(), kMatchedScale, 0.5 * kMatchedScale);
+  // Weaker than a matched step in heading: the graph follows the matching there.
+  EXPECT_GT(model.StepCovariance(Pose2D(0.9, 0.0, 0.2))(2, 2), kMatchedCovariance(2, 2));
+}
+
+TEST(OdometryModel, AStepsShapeGrowsWithItsLengthAndTurnAndTheOptionsAreChecked) {
+  const OdometryModel model{OdometryModelOptions{}};
+  const OdometryStepShape shape = model.Shape(Pose2D(0.6, 0.8, -0.5));
+  EXPECT_DOUBLE_EQ(shape.position(0, 0), 1.0);
+  EXPECT_DOUBLE_EQ(shape.position(1, 1), 1.0);
+  EXPECT_DOUBLE_EQ(shape.heading(2, 2), 1.5);  // 1 m and 0.5 rad at 1 m per rad
+  EXPECT_FALSE(model.learned());
+  OdometryModelOptions bad;
+  bad.floor_rad = 0.0;
+  EXPECT_THROW(OdometryModel{bad}, std::invalid_argument);
+  bad = {};
+  bad.stretch_m = -1.0;
+  EXPECT_THROW(OdometryModel{bad}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace scanloc
