@@ -36,8 +36,8 @@ Eigen::Matrix3d EdgeInformation(const std::optional<Eigen::Matrix3d>& covariance
 // small consistent pulls. The heading is what carries a chain off; the model's position noise,
 // fitted on stretches, still holds some of the matching's own jitter.
 bool OdometryHoldsHeading(const Eigen::Matrix3d& odometry_covariance,
-                          const Eigen::Matrix3d& matched_information) {
-  return odometry_covariance(2, 2) <= matched_information.inverse()(2, 2);
+                          const Eigen::Matrix3d& matched_covariance) {
+  return odometry_covariance(2, 2) <= matched_covariance(2, 2);
 }
 
 // Another valid refinement lies farther than distinct_m or distinct_rad from the kept one.
@@ -122,7 +122,7 @@ void LoopCloser::AddNode(std::size_t iteration, const LaserScan& scan, const Pos
   double path_m = 0.0;
   if (!nodes_.empty())
     path_m = nodes_.back().path_m + Distance(graph_.nodes().back(), T_world_robot);
-  nodes_.push_back({iteration, scan, path_m, odometry, 0, std::nullopt});
+  nodes_.push_back({iteration, scan, path_m, odometry, 0, Eigen::Matrix3d::Zero(), std::nullopt});
   const std::size_t node = graph_.AddNode(T_world_robot);
   ++nodes_since_attempt_;
   if (node == 0) return;
@@ -132,6 +132,7 @@ void LoopCloser::AddNode(std::size_t iteration, const LaserScan& scan, const Pos
                   EdgeInformation(laser_covariance, from.yaw_rad, options_.sigma_floor_m,
                                   options_.sigma_floor_rad),
                   EdgeKind::kSequential});
+  nodes_.back().sequential_covariance = graph_.edges().back().information.inverse();
   if (odometry_model_.learned()) WeighOdometry(node);
 }
 
@@ -404,7 +405,7 @@ std::optional<ChainMisses> LoopCloser::Chains(std::size_t a, std::size_t b,
   for (std::size_t k = a + 1; k <= b; ++k) {
     if (!nodes_[k - 1].odometry || !nodes_[k].odometry) return std::nullopt;
     const PoseGraphEdge& sequential = graph_.edges()[nodes_[k].sequential_edge];
-    matched.Append(sequential.T_from_to, sequential.information.inverse());
+    matched.Append(sequential.T_from_to, nodes_[k].sequential_covariance);
     const Pose2D step = Between(*nodes_[k - 1].odometry, *nodes_[k].odometry);
     const OdometryStepShape shape = odometry_model_.Shape(step);
     position.Append(step, shape.position);
@@ -461,16 +462,17 @@ void LoopCloser::WeighOdometry(std::size_t first_node) {
     const Eigen::Matrix3d covariance = odometry_model_.StepCovariance(step);
     Eigen::Matrix3d information = covariance.inverse();
     information = 0.5 * (information + information.transpose());
-    const bool active =
-        OdometryHoldsHeading(covariance, graph_.edges()[node.sequential_edge].information);
+    const bool active = OdometryHoldsHeading(covariance, node.sequential_covariance);
     if (node.odometry_edge) {
+      const PoseGraphEdge& edge = graph_.edges()[*node.odometry_edge];
+      if (edge.active || active) reweighed_ = true;
       graph_.SetInformation(*node.odometry_edge, information, active);
     } else if (active) {
       node.odometry_edge = graph_.edges().size();
       graph_.AddEdge({k - 1, k, step, information, EdgeKind::kOdometry});
+      reweighed_ = true;
     }
   }
-  reweighed_ = true;
 }
 
 void LoopCloser::SetPriorMap(const PointMap& map) {
@@ -518,7 +520,7 @@ std::optional<Pose2D> LoopCloser::NewestNode() const {
 bool LoopCloser::ByOdometry(const Anchoring& anchor) const {
   if (!anchor.T_node_robot_odometry || !odometry_model_.learned() || anchor.node == 0) return false;
   return OdometryHoldsHeading(odometry_model_.StepCovariance(*anchor.T_node_robot_odometry),
-                              graph_.edges()[nodes_[anchor.node].sequential_edge].information);
+                              nodes_[anchor.node].sequential_covariance);
 }
 
 std::vector<std::optional<Pose2D>> LoopCloser::CorrectedPostures() const {

@@ -180,7 +180,8 @@ class LoopCloser {
     double path_m = 0.0;  // path driven from the first node to this one
     std::optional<Pose2D> odometry;
     std::size_t sequential_edge = 0;  // the edge from the previous node (none for the first)
-    std::optional<std::size_t> odometry_edge;  // the odometry's, beside it
+    Eigen::Matrix3d sequential_covariance = Eigen::Matrix3d::Zero();  // that edge's, inverted once
+    std::optional<std::size_t> odometry_edge;                         // the odometry's, beside it
   };
   struct Anchoring {
     std::size_t node = 0;
@@ -216,7 +217,8 @@ class LoopCloser {
   // matched chain over each): those completed since the last call join stretches_.
   void ExtendStretches();
   // The odometry edges into the nodes from `first_node` on added, or weighed again, with the
-  // model as it stands; the next Finish then solves the whole graph.
+  // model as it stands; when one that holds the graph was added or weighed, the next Finish
+  // solves the whole graph.
   void WeighOdometry(std::size_t first_node = 1);
 
   LoopClosureOptions options_;
@@ -229,7 +231,7 @@ class LoopCloser {
   // The newest closures the model learns from: the cost of learning stays bounded per closure
   // however many a long session confirms, and the model follows an odometry that changes.
   static constexpr std::size_t kMaxTaught = 20;
-  bool reweighed_ = false;  // odometry edges weighed again since the last whole solve
+  bool reweighed_ = false;  // active odometry edges added or weighed since the last whole solve
   std::vector<Node> nodes_;
   std::vector<std::optional<Anchoring>> anchors_;  // by record index
   std::vector<ClosureAttempt> attempts_;
