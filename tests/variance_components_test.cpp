@@ -13,9 +13,11 @@ namespace scanloc {
 namespace {
 
 // Squared differences of two of three Gaussian sources with variances `sigma2` × `shape`, where
-// each observation has its own shape (its length, say), drawn uniformly in [1, 20]; seed 5.
-std::vector<VarianceObservation> PairwiseDifferences(const Eigen::Vector3d& sigma2, int per_pair) {
-  std::mt19937 random(5);
+// each observation has its own shape (its length, say), drawn uniformly in [1, 20]; seed 5 unless
+// told.
+std::vector<VarianceObservation> PairwiseDifferences(const Eigen::Vector3d& sigma2, int per_pair,
+                                                     unsigned seed = 5) {
+  std::mt19937 random(seed);
   std::uniform_real_distribution<double> length(1.0, 20.0);
   std::normal_distribution<double> unit(0.0, 1.0);
   std::vector<VarianceObservation> observations;
@@ -69,6 +71,40 @@ TEST(VarianceComponents, AKnownPartIsNotCountedInTheScales) {
   ASSERT_EQ(scales.size(), 2);
   EXPECT_LT(scales.maxCoeff(), 5e-6);
   EXPECT_EQ(FitVarianceComponents({}).size(), 0);
+}
+
+// The covariance the Fisher information gives the scales is the spread they show over 60 draws
+// (seeds 100–159) within a factor of 1.5 in σ.
+TEST(VarianceComponents, TheScalesCovarianceIsTheirSpreadOverDrawsWithinHalf) {
+  const Eigen::Vector3d sigma2(4e-4, 1e-4, 2.5e-4);
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero(), sum2 = Eigen::Vector3d::Zero();
+  const int draws = 60;
+  for (int draw = 0; draw < draws; ++draw) {
+    const Eigen::VectorXd scales =
+        FitVarianceComponents(PairwiseDifferences(sigma2, 300, 100 + draw));
+    sum += scales;
+    sum2 += scales.cwiseProduct(scales);
+  }
+  const Eigen::Vector3d spread = ((sum2 - sum.cwiseProduct(sum) / draws) / (draws - 1)).cwiseSqrt();
+  const std::vector<VarianceObservation> observations = PairwiseDifferences(sigma2, 300);
+  const Eigen::MatrixXd covariance =
+      VarianceComponentsCovariance(observations, FitVarianceComponents(observations));
+  for (int j = 0; j < 3; ++j) {
+    const double sigma = std::sqrt(covariance(j, j));
+    EXPECT_GT(sigma, spread(j) / 1.5) << "source " << j;
+    EXPECT_LT(sigma, spread(j) * 1.5) << "source " << j;
+  }
+}
+
+// Two sources that are only ever seen together: their sum is known, not how it splits.
+TEST(VarianceComponents, TwoScalesAlwaysSeenTogetherHaveAVarianceFarBeyondTheirSize) {
+  std::vector<VarianceObservation> observations = PairwiseDifferences({1e-4, 1e-4, 1e-4}, 300);
+  for (VarianceObservation& o : observations) o.design(1) = o.design(0);
+  const Eigen::VectorXd scales = FitVarianceComponents(observations);
+  const Eigen::MatrixXd covariance = VarianceComponentsCovariance(observations, scales);
+  EXPECT_GT(covariance(0, 0), 1e6 * 1e-4 * 1e-4);
+  EXPECT_GT(covariance(1, 1), 1e6 * 1e-4 * 1e-4);
+  EXPECT_LT(covariance(2, 2), 1e-4 * 1e-4);  // the third is still seen on its own
 }
 
 }  // namespace

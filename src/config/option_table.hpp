@@ -317,7 +317,8 @@ void VisitLoopClosure(C& c, V& v) {
   v("loop_closure.odometry_turn_weight_m_per_rad", l.odometry.turn_weight_m_per_rad, Bounds{0, 1e3},
     "odometry model: a radian of turn weighs on the heading like this many metres");
   v("loop_closure.odometry_stretch_m", l.odometry.stretch_m, Bounds{1e-3, 1e6},
-    "odometry model: its position noise is fitted on stretches of this much path, m");
+    "odometry model: its noise is fitted on stretches of this much path and of 2, 4 and 8 times "
+    "it, m");
   v("loop_closure.odometry_position_per_heading_m2", l.odometry.position_per_heading_m2,
     Bounds{0, 1e3},
     "odometry model: its position variance per metre is at least this times its heading's, m²");

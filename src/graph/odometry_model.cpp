@@ -5,16 +5,15 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <stdexcept>
 
 namespace scanloc {
 namespace {
 
-// Medians of χ² with 1, 2 and 3 degrees of freedom.
-constexpr double kChi2Median1 = 0.454936;
-constexpr double kChi2Median2 = 1.386294;
+// The median of χ² with 3 degrees of freedom.
 constexpr double kChi2Median3 = 2.365974;
+// A scale the misses know only roughly is taken this many standard deviations above its fit.
+constexpr double kBoundSigmas = 2.0;
 
 double Median(std::vector<double> values) {
   const std::size_t half = values.size() / 2;
@@ -22,19 +21,6 @@ double Median(std::vector<double> values) {
   if (values.size() % 2 == 1) return values[half];
   const double upper = values[half];
   return 0.5 * (upper + *std::max_element(values.begin(), values.begin() + half));
-}
-
-// The scale λ ≥ 0 at which the median of the whitened squared misses, `whitened(λ)` (falling as λ
-// grows), meets `target`: 0 when it is below it already at 0, bisected in log space otherwise.
-double FitScale(const std::function<double(double)>& whitened, double target) {
-  double low = 1e-15, high = 1e3;
-  if (whitened(0.0) <= target) return 0.0;
-  if (whitened(high) >= target) return high;
-  for (int i = 0; i < 80; ++i) {
-    const double middle = std::sqrt(low * high);
-    (whitened(middle) > target ? low : high) = middle;
-  }
-  return std::sqrt(low * high);
 }
 
 }  // namespace
@@ -75,7 +61,9 @@ void OdometryModel::Learn(std::vector<ChainMisses> closures, std::vector<ChainMi
 // closure against the odometry chain (λ_r and the closure's own error, a variance λ_c alike for
 // every closure) and against the matched chain (λ_s and λ_c), each stretch the odometry chain
 // against the matched one (λ_r and λ_s). A perfect odometry's closures miss by their own error,
-// which no longer passes for the odometry's.
+// which no longer passes for the odometry's. (A matched scan's jitter in heading, a mrad, is
+// small beside what the chains turn apart over a stretch: a component of its own for it was
+// measured and not kept.)
 double HeadingScale(const std::vector<ChainMisses>& closures,
                     const std::vector<ChainMisses>& stretches) {
   std::vector<VarianceObservation> observations;
@@ -93,25 +81,50 @@ double HeadingScale(const std::vector<ChainMisses>& closures,
   return x(0);
 }
 
-// λ_t fitted on the position misses of the stretches, the heading's part at λ_r and the matched
-// chain's at λ_s counted in.
-double PositionScale(const std::vector<ChainMisses>& stretches, double heading_scale,
-                     double matched_scale) {
-  std::vector<double> values(stretches.size());
-  return FitScale(
-      [&](double lambda) {
-        for (std::size_t i = 0; i < stretches.size(); ++i) {
-          const ChainMisses& m = stretches[i];
-          const Eigen::Matrix2d covariance =
-              (lambda * m.odometry_per_position + heading_scale * m.odometry_per_heading +
-               m.odometry_floor + matched_scale * m.matched_covariance)
-                  .topLeftCorner<2, 2>();
-          const Eigen::Vector2d miss = m.odometry_miss.head<2>();
-          values[i] = miss.dot(covariance.inverse() * miss);
-        }
-        return Median(values);
-      },
-      kChi2Median2);
+// A position miss: its squared length, expected to be the trace of its covariance.
+VarianceObservation PositionMiss(const Eigen::Vector3d& miss, const Eigen::Matrix3d& known,
+                                 const Eigen::Vector4d& design) {
+  return {miss.head<2>().squaredNorm(), known.topLeftCorner<2, 2>().trace(), design, 2.0};
+}
+
+// λ_t on the stretches alone, beside λ_j (the matching's jitter at a stretch's two ends), the
+// heading's part at λ_r and the matched chain's at λ_s counted in. The stretches cannot tell the
+// odometry's noise from what the matched chain drifts beyond λ_s: an upper bound.
+double PositionScaleOnStretches(const std::vector<ChainMisses>& stretches, double heading_scale,
+                                double matched_scale) {
+  std::vector<VarianceObservation> observations;
+  for (const ChainMisses& m : stretches)
+    observations.push_back(PositionMiss(
+        m.odometry_miss,
+        heading_scale * m.odometry_per_heading + m.odometry_floor +
+            matched_scale * m.matched_covariance,
+        Eigen::Vector4d(m.odometry_per_position.topLeftCorner<2, 2>().trace(), 0.0, 0.0, 2.0)));
+  return FitVarianceComponents(observations)(0);
+}
+
+// λ_t from the three sources in position, as the heading's (λ_t, the matched chain's position
+// scale, the closure's own error, the jitter of a stretch's ends; the heading's part at λ_r), and
+// how well they know it. Over a loop the heading's lever dominates a drifting odometry's position
+// misses: there the closures hardly see λ_t, and its bound is wide.
+double PositionScaleUpperBound(const std::vector<ChainMisses>& closures,
+                               const std::vector<ChainMisses>& stretches, double heading_scale) {
+  std::vector<VarianceObservation> observations;
+  auto trace = [](const Eigen::Matrix3d& m) { return m.topLeftCorner<2, 2>().trace(); };
+  for (const ChainMisses& m : closures) {
+    observations.push_back(
+        PositionMiss(m.odometry_miss, heading_scale * m.odometry_per_heading + m.odometry_floor,
+                     Eigen::Vector4d(trace(m.odometry_per_position), 0.0, 2.0, 0.0)));
+    observations.push_back(
+        PositionMiss(m.matched_miss, Eigen::Matrix3d::Zero(),
+                     Eigen::Vector4d(0.0, trace(m.matched_covariance), 2.0, 0.0)));
+  }
+  for (const ChainMisses& m : stretches)
+    observations.push_back(PositionMiss(
+        m.odometry_miss, heading_scale * m.odometry_per_heading + m.odometry_floor,
+        Eigen::Vector4d(trace(m.odometry_per_position), trace(m.matched_covariance), 0.0, 2.0)));
+  const Eigen::VectorXd x = FitVarianceComponents(observations);
+  const double variance = VarianceComponentsCovariance(observations, x)(0, 0);
+  return x(0) + kBoundSigmas * std::sqrt(std::max(variance, 0.0));
 }
 
 // The matched chain's scale on its closures' misses, the heading's from the three sources, the
@@ -125,7 +138,10 @@ void OdometryModel::Fit() {
   }
   matched_ = std::clamp(Median(values) / kChi2Median3, 1e-3, 1e6);
   heading_ = HeadingScale(misses_, stretches_);
-  position_ = stretches_.empty() ? 0.0 : PositionScale(stretches_, heading_, matched_);
+  position_ = stretches_.empty()
+                  ? 0.0
+                  : std::min(PositionScaleOnStretches(stretches_, heading_, matched_),
+                             PositionScaleUpperBound(misses_, stretches_, heading_));
   position_ = std::max(position_, options_.position_per_heading_m2 * heading_);
 }
 

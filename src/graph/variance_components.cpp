@@ -1,5 +1,6 @@
 #include "scanloc/graph/variance_components.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
@@ -67,8 +68,8 @@ Eigen::VectorXd FitVarianceComponents(const std::vector<VarianceObservation>& ob
       // A variance no scale reaches yet stays a tiny fraction of the misses' mean, not 0.
       const double variance = std::max(o.known + o.design.dot(scales), 1e-9 * mean);
       const double excess = std::abs(o.squared_miss / variance - 1.0);
-      weights[k] =
-          std::min(1.0, kChi2Quantile999 / std::max(excess, 1e-12)) / (variance * variance);
+      weights[k] = std::min(1.0, kChi2Quantile999 / std::max(excess, 1e-12)) *
+                   o.degrees_of_freedom / (variance * variance);
     }
     const Eigen::VectorXd next = NonNegativeLeastSquares(observations, weights);
     const bool settled = (next - scales).norm() <= 1e-9 * scales.norm();
@@ -76,6 +77,28 @@ Eigen::VectorXd FitVarianceComponents(const std::vector<VarianceObservation>& ob
     if (settled) break;
   }
   return scales;
+}
+
+Eigen::MatrixXd VarianceComponentsCovariance(const std::vector<VarianceObservation>& observations,
+                                             const Eigen::VectorXd& scales) {
+  const Eigen::Index n = scales.size();
+  Eigen::MatrixXd information = Eigen::MatrixXd::Zero(n, n);
+  for (const VarianceObservation& o : observations) {
+    const double variance = std::max(o.known + o.design.dot(scales), 1e-300);
+    information +=
+        (0.5 * o.degrees_of_freedom / (variance * variance)) * o.design * o.design.transpose();
+  }
+  // Inverted in the scales' own units (their shapes differ by orders of magnitude); a direction
+  // the observations hardly see counts as unseen.
+  const Eigen::VectorXd norms = information.diagonal().cwiseSqrt().cwiseMax(1e-300);
+  const Eigen::MatrixXd scaled =
+      norms.cwiseInverse().asDiagonal() * information * norms.cwiseInverse().asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(scaled);
+  const Eigen::VectorXd values =
+      eigen.eigenvalues().cwiseMax(1e-12 * std::max(1.0, eigen.eigenvalues().maxCoeff()));
+  const Eigen::MatrixXd inverse =
+      eigen.eigenvectors() * values.cwiseInverse().asDiagonal() * eigen.eigenvectors().transpose();
+  return norms.cwiseInverse().asDiagonal() * inverse * norms.cwiseInverse().asDiagonal();
 }
 
 }  // namespace scanloc

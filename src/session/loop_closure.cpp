@@ -441,16 +441,18 @@ void LoopCloser::LearnOdometry(const PoseGraphEdge& closure) {
 }
 
 void LoopCloser::ExtendStretches() {
-  for (std::size_t k = stretch_start_ + 1; k < nodes_.size(); ++k) {
-    if (!nodes_[k - 1].odometry || !nodes_[k].odometry) {
-      stretch_start_ = k;
-      continue;
+  for (std::size_t level = 0; level < kStretchLengths; ++level) {
+    const double length_m = options_.odometry.stretch_m * static_cast<double>(1u << level);
+    std::size_t& start = stretch_starts_[level];
+    for (std::size_t k = start + 1; k < nodes_.size(); ++k) {
+      if (!nodes_[k - 1].odometry || !nodes_[k].odometry) {
+        start = k;
+        continue;
+      }
+      if (nodes_[k].path_m - nodes_[start].path_m < length_m || k - start < 2) continue;
+      stretches_.push_back(*Chains(start, k, std::nullopt));
+      start = k;
     }
-    if (nodes_[k].path_m - nodes_[stretch_start_].path_m < options_.odometry.stretch_m ||
-        k - stretch_start_ < 2)
-      continue;
-    stretches_.push_back(*Chains(stretch_start_, k, std::nullopt));
-    stretch_start_ = k;
   }
 }
 

@@ -12,20 +12,27 @@
 //
 // The model of an odometry step of length d metres and turn Δθ radians (covariance in the step's
 // start frame): position variance λ_t·d on x and y, heading variance λ_r·(d + w·|Δθ|), plus the
-// floors. The scales are fitted robustly: the median of squared misses, each whitened by the
-// covariance the model predicts for it, meets the median of the χ² it would follow.
+// floors. The scales are fitted robustly:
 // - λ_s, the matched chain's scale (how much the refinement's covariance understates its drift):
-//   on the closures' misses of the matched chain, 3 degrees of freedom.
+//   on the closures' misses of the matched chain, where the median of the squared misses, each
+//   whitened by the covariance the model predicts for it, meets the median of χ² with 3 degrees
+//   of freedom.
 // - λ_r (rad²/m): in heading, from three sources compared two by two (the closures against both
 //   chains, the stretches below the odometry chain against the matched one), each contributing a
 //   variance of its own (the closure's alike for every closure): variance_components.hpp.
-// - λ_t (m²/m): not from the closures, whose position misses the heading's errors dominate over
-//   any loop (they grow with the cube of its length, the position's own with its length), but
-//   from stretches of the path: the odometry chain against the matched chain over each stretch
-//   of stretch_m, 2 degrees of freedom, the heading's part (at λ_r) and the matched chain's (at
-//   λ_s) counted in. Stretches, not single steps: a scan matched on the map errs by a jitter that
-//   consecutive steps undo, which would pass for the odometry's noise step by step but does not
-//   grow with the stretch, as the odometry's noise does. At least position_per_heading_m2·λ_r.
+// - λ_t (m²/m): the smaller of two estimates, and at least position_per_heading_m2·λ_r.
+//   - On the stretches alone: the odometry chain against the matched chain over stretches of
+//     stretch_m and of twice, four and eight times that, λ_t beside λ_j, the matching's jitter
+//     at a stretch's two ends (a scan matched on the map errs by a jitter that the next steps
+//     undo: it does not grow with the stretch, the odometry's noise does, and only stretches of
+//     several lengths tell them apart), the heading's part (at λ_r) and the matched chain's (at
+//     λ_s) counted in. The odometry's noise and what the matched chain drifts beyond λ_s grow
+//     alike: an upper bound.
+//   - From the three sources in position, as the heading's (the closures against both chains,
+//     the stretches), taken at its fit plus two standard deviations (variance_components.hpp):
+//     over a loop the heading's lever dominates a drifting odometry's position misses, so that
+//     the closures hardly see λ_t and the bound is wide; a perfect odometry's closures miss by
+//     their own few centimetres, and the bound is tight.
 // Odometry steps enter the graph as (model) / λ_s, in the graph's units.
 
 #include <Eigen/Core>
@@ -43,8 +50,9 @@ struct OdometryModelOptions {
   // few centimetres can neither confirm nor refute.
   double floor_m = 0.001;
   double floor_rad = 0.0002;
-  // The stretches of path the odometry's position noise is fitted on, m.
-  double stretch_m = 10.0;
+  // The shortest stretches of path the odometry's noise is fitted on (and others twice, four and
+  // eight times as long), m.
+  double stretch_m = 2.5;
   // The position noise per metre is at least this times the heading's (m²/m per rad²/m): a
   // differential drive's wheels, each slipping alike, turn it by their difference over the track
   // and move it by their mean, so that the two variances stand as (track / 2)², 0.0625 m² for a

@@ -17,10 +17,19 @@ struct VarianceObservation {
   double squared_miss = 0.0;
   double known = 0.0;      // the part of its expected value no scale multiplies
   Eigen::VectorXd design;  // what each scale multiplies (one entry per scale, >= 0)
+  // The squared length of a miss of k independent parts alike: its variance is 2v²/k for an
+  // expected value v (a squared Gaussian's, k = 1).
+  double degrees_of_freedom = 1.0;
 };
 
 // The scales, one per design entry (all observations have as many). Zero for a scale no
 // observation needs; empty without observations.
 Eigen::VectorXd FitVarianceComponents(const std::vector<VarianceObservation>& observations);
+
+// The covariance of the scales at `scales`: the inverse of their Fisher information under the
+// observations. A scale the observations cannot tell from the others (its shape a combination of
+// theirs) has a variance that is infinite, or nearly: what the fit chose for it is not known.
+Eigen::MatrixXd VarianceComponentsCovariance(const std::vector<VarianceObservation>& observations,
+                                             const Eigen::VectorXd& scales);
 
 }  // namespace scanloc

@@ -8,6 +8,7 @@
 // direction) becomes a closure edge. The graph is then solved; closures it cannot explain are set
 // aside (PoseGraph), and every scan's posture follows its node.
 
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -213,8 +214,9 @@ class LoopCloser {
   // posture of b seen from a) when given; nothing when a node between them has no odometry.
   std::optional<ChainMisses> Chains(std::size_t a, std::size_t b,
                                     const std::optional<Pose2D>& closure) const;
-  // The chain cut into stretches of odometry.stretch_m of path (the odometry chain against the
-  // matched chain over each): those completed since the last call join stretches_.
+  // The chain cut into stretches of odometry.stretch_m of path, and again into stretches twice,
+  // four and eight times as long (the odometry chain against the matched chain over each): those
+  // completed since the last call join stretches_.
   void ExtendStretches();
   // The odometry edges into the nodes from `first_node` on added, or weighed again, with the
   // model as it stands; when one that holds the graph was added or weighed, the next Finish
@@ -227,7 +229,11 @@ class LoopCloser {
   OdometryModel odometry_model_;
   std::vector<ChainMisses> taught_;     // of each closure the odometry model learned from
   std::vector<ChainMisses> stretches_;  // completed so far
-  std::size_t stretch_start_ = 0;       // the node the stretch under way starts at
+  // Stretches of several lengths: the odometry's noise grows with the path, the matching's jitter
+  // at a stretch's two ends does not, and only stretches of several lengths tell them apart.
+  static constexpr std::size_t kStretchLengths = 4;
+  // The node the stretch under way of each length starts at.
+  std::array<std::size_t, kStretchLengths> stretch_starts_{};
   // The newest closures the model learns from: the cost of learning stays bounded per closure
   // however many a long session confirms, and the model follows an odometry that changes.
   static constexpr std::size_t kMaxTaught = 20;
