@@ -83,7 +83,7 @@ double HeadingScale(const std::vector<ChainMisses>& closures,
 
 // A position miss: its squared length, expected to be the trace of its covariance.
 VarianceObservation PositionMiss(const Eigen::Vector3d& miss, const Eigen::Matrix3d& known,
-                                 const Eigen::Vector4d& design) {
+                                 const Eigen::VectorXd& design) {
   return {miss.head<2>().squaredNorm(), known.topLeftCorner<2, 2>().trace(), design, 2.0};
 }
 
@@ -98,7 +98,7 @@ double PositionScaleOnStretches(const std::vector<ChainMisses>& stretches, doubl
         m.odometry_miss,
         heading_scale * m.odometry_per_heading + m.odometry_floor +
             matched_scale * m.matched_covariance,
-        Eigen::Vector4d(m.odometry_per_position.topLeftCorner<2, 2>().trace(), 0.0, 0.0, 2.0)));
+        Eigen::Vector2d(m.odometry_per_position.topLeftCorner<2, 2>().trace(), 2.0)));
   return FitVarianceComponents(observations)(0);
 }
 
