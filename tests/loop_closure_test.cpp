@@ -197,6 +197,34 @@ TEST(LoopCloser, APerfectOdometryTaughtByTheClosuresHoldsEveryNodeWithinFiveCent
   EXPECT_DOUBLE_EQ(largest_error_m(*weak), largest_error_m(*without));
 }
 
+// Stretches of 0.15 m (at least two nodes: 0.8 m), 0.3, 0.6 and 1.2 m: the window is 32 of the
+// longest, 38.4 m of the 92 m driven. Each length's stretches start in it at least one stretch
+// apart, so at most 48 + 1 of each of the three shorter lengths and 32 + 1 of the longest are
+// fitted (without the window, 415 by the end).
+TEST(LoopCloser, TheOdometryIsLearnedFromTheStretchesOfTheNewestPathOnly) {
+  const Lap lap = DriveRing(testing::RingBuilding());
+  LoopClosureOptions options = Enabled();
+  options.odometry_edges = true;
+  options.odometry.stretch_m = 0.15;
+  const double window_m = 32.0 * 8.0 * options.odometry.stretch_m;
+  LoopCloser closer(options, LaserMounting{});
+  Pose2D estimate = lap.truth[0];
+  std::size_t learned_past_two_windows = 0;
+  for (std::size_t i = 0; i < lap.truth.size(); ++i) {
+    if (i > 0) estimate = estimate * Between(lap.truth[i - 1], lap.truth[i]);
+    closer.AddNode(i, lap.scans[i], estimate, std::nullopt, lap.truth[i]);
+    closer.Anchor(i, estimate, true, lap.truth[i]);
+    const auto attempt = closer.MaybeClose(LocalisationOptions{}, PointMapOptions{});
+    learned_past_two_windows += attempt && attempt->accepted && closer.path_m() > 2.0 * window_m;
+  }
+  const OdometryModel& model = closer.odometry_model();
+  std::printf("%.1f m driven; the last fit saw %zu stretches; %zu closures learned past %.1f m\n",
+              closer.path_m(), model.stretches(), learned_past_two_windows, 2.0 * window_m);
+  ASSERT_GE(learned_past_two_windows, 1u);
+  EXPECT_LE(model.stretches(), 3u * 49u + 33u);
+  EXPECT_GE(model.stretches(), 3u * 40u + 28u);
+}
+
 TEST(LoopCloser, ClosuresThatWouldMoveTheMapLessThanTheRenderShiftJoinUnsolvedUntilFinish) {
   const Lap lap = DriveRing(testing::RingBuilding());
   LoopClosureOptions options = Enabled();

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "scanloc/graph/relative_covariance.hpp"
 
@@ -435,8 +436,11 @@ void LoopCloser::LearnOdometry(const PoseGraphEdge& closure) {
   taught_.push_back(*misses);
   ExtendStretches();
   const std::size_t first = taught_.size() - std::min(taught_.size(), kMaxTaught);
+  std::vector<ChainMisses> stretches;
+  stretches.reserve(stretches_.size());
+  for (const Stretch& stretch : stretches_) stretches.push_back(stretch.misses);
   odometry_model_.Learn({taught_.begin() + static_cast<std::ptrdiff_t>(first), taught_.end()},
-                        stretches_);
+                        std::move(stretches));
   WeighOdometry();
 }
 
@@ -450,10 +454,16 @@ void LoopCloser::ExtendStretches() {
         continue;
       }
       if (nodes_[k].path_m - nodes_[start].path_m < length_m || k - start < 2) continue;
-      stretches_.push_back(*Chains(start, k, std::nullopt));
+      stretches_.push_back({nodes_[start].path_m, *Chains(start, k, std::nullopt)});
       start = k;
     }
   }
+  const double longest_m =
+      options_.odometry.stretch_m * static_cast<double>(1u << (kStretchLengths - 1));
+  const double window_start_m = path_m() - kStretchWindow * longest_m;
+  stretches_.erase(std::remove_if(stretches_.begin(), stretches_.end(),
+                                  [&](const Stretch& s) { return s.start_path_m < window_start_m; }),
+                   stretches_.end());
 }
 
 void LoopCloser::WeighOdometry(std::size_t first_node) {

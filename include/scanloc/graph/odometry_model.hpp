@@ -96,6 +96,8 @@ class OdometryModel {
   // True once a closure taught the model.
   bool learned() const { return !misses_.empty(); }
   std::size_t closures() const { return misses_.size(); }
+  // The stretches of the last fit.
+  std::size_t stretches() const { return stretches_.size(); }
   // The covariance of an odometry step in the graph's units (divided by the matched chain's
   // scale). Only meaningful once learned().
   Eigen::Matrix3d StepCovariance(const Pose2D& increment) const;

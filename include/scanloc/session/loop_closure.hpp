@@ -216,7 +216,7 @@ class LoopCloser {
                                     const std::optional<Pose2D>& closure) const;
   // The chain cut into stretches of odometry.stretch_m of path, and again into stretches twice,
   // four and eight times as long (the odometry chain against the matched chain over each): those
-  // completed since the last call join stretches_.
+  // completed since the last call join stretches_, those now out of its window leave it.
   void ExtendStretches();
   // The odometry edges into the nodes from `first_node` on added, or weighed again, with the
   // model as it stands; when one that holds the graph was added or weighed, the next Finish
@@ -228,7 +228,11 @@ class LoopCloser {
   PoseGraph graph_;
   OdometryModel odometry_model_;
   std::vector<ChainMisses> taught_;     // of each closure the odometry model learned from
-  std::vector<ChainMisses> stretches_;  // completed so far
+  struct Stretch {
+    double start_path_m = 0.0;  // the path driven at its first node
+    ChainMisses misses;
+  };
+  std::vector<Stretch> stretches_;  // completed within the newest kStretchWindow of path
   // Stretches of several lengths: the odometry's noise grows with the path, the matching's jitter
   // at a stretch's two ends does not, and only stretches of several lengths tell them apart.
   static constexpr std::size_t kStretchLengths = 4;
@@ -237,6 +241,10 @@ class LoopCloser {
   // The newest closures the model learns from: the cost of learning stays bounded per closure
   // however many a long session confirms, and the model follows an odometry that changes.
   static constexpr std::size_t kMaxTaught = 20;
+  // The stretches the model learns from: those that start within the newest path as long as this
+  // many stretches of the longest length, for the same reasons (without it, each closure's fit
+  // would cost more the longer the session: the stretches grow with the path).
+  static constexpr double kStretchWindow = 32.0;
   bool reweighed_ = false;  // active odometry edges added or weighed since the last whole solve
   std::vector<Node> nodes_;
   std::vector<std::optional<Anchoring>> anchors_;  // by record index
