@@ -62,18 +62,13 @@ int Cheapest(const std::vector<RankedCandidate>& ranked,
   return cheapest;
 }
 
-// The evaluated candidates to refine, in the order they are refined, and how many of the first
-// of them a flagged guess is chosen from when no refinement passes the rules: the first
-// candidate that kBestValidAndFirst adds is kept only when the rules pass it.
-struct RefineOrder {
+// The evaluated candidates to refine, in the order they are refined. kBestValidAndFirst adds the
+// first candidate (the prediction) when the rules rejected it as given: its refinement is ranked
+// with the others and, when none passes, is one more guess the cheapest of is kept.
+std::vector<int> ToRefine(const std::vector<RankedCandidate>& evaluated, RefinePolicy policy,
+                          int max_refined) {
   std::vector<int> order;
-  std::size_t guesses = 0;
-};
-RefineOrder ToRefine(const std::vector<RankedCandidate>& evaluated, RefinePolicy policy,
-                     int max_refined) {
-  RefineOrder refine;
-  std::vector<int>& order = refine.order;
-  if (policy == RefinePolicy::kNone) return refine;
+  if (policy == RefinePolicy::kNone) return order;
   for (std::size_t i = 0; i < evaluated.size(); ++i)
     if (policy == RefinePolicy::kAll || evaluated[i].rank >= 0)
       order.push_back(static_cast<int>(i));
@@ -85,11 +80,10 @@ RefineOrder ToRefine(const std::vector<RankedCandidate>& evaluated, RefinePolicy
     if (policy != RefinePolicy::kValidOnly && order.empty() && !evaluated.empty())
       order.push_back(std::max(0, Cheapest(evaluated)));
   }
-  refine.guesses = order.size();
   if (policy == RefinePolicy::kBestValidAndFirst && !evaluated.empty() &&
       std::find(order.begin(), order.end(), 0) == order.end())
     order.push_back(0);
-  return refine;
+  return order;
 }
 
 RankedCandidate RefineOne(const MapView& map, const LaserScan& scan, const RankedCandidate& from,
@@ -133,13 +127,13 @@ LocalisationResult Localise(const MapView& map, const LaserScan& scan,
   result.evaluate_s = SecondsSince(evaluate_start);
 
   const auto refine_start = std::chrono::steady_clock::now();
-  const RefineOrder refine = ToRefine(result.evaluated, policy, max_refined);
-  for (const int i : refine.order)
+  for (const int i : ToRefine(result.evaluated, policy, max_refined))
     result.refined.push_back(RefineOne(map, scan, result.evaluated[i], i, mounting, options));
   if (!result.refined.empty()) {
     result.best_refined = RankByRules(result.refined, options.validation);
-    result.kept = result.best_refined >= 0 ? result.best_refined
-                                           : std::max(0, Cheapest(result.refined, refine.guesses));
+    // None passes: the cheapest refinement is the flagged guess kept.
+    result.kept =
+        result.best_refined >= 0 ? result.best_refined : std::max(0, Cheapest(result.refined));
   }
   result.refine_s = SecondsSince(refine_start);
   return result;

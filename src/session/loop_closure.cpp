@@ -461,9 +461,10 @@ void LoopCloser::ExtendStretches() {
   const double longest_m =
       options_.odometry.stretch_m * static_cast<double>(1u << (kStretchLengths - 1));
   const double window_start_m = path_m() - kStretchWindow * longest_m;
-  stretches_.erase(std::remove_if(stretches_.begin(), stretches_.end(),
-                                  [&](const Stretch& s) { return s.start_path_m < window_start_m; }),
-                   stretches_.end());
+  stretches_.erase(
+      std::remove_if(stretches_.begin(), stretches_.end(),
+                     [&](const Stretch& s) { return s.start_path_m < window_start_m; }),
+      stretches_.end());
 }
 
 void LoopCloser::WeighOdometry(std::size_t first_node) {

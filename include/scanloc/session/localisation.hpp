@@ -39,7 +39,8 @@ enum class RefinePolicy {
   kValidOnly,  // the valid ones best first, up to a number; none when none is valid
   // kBestValid's, and the first candidate (a session's odometry prediction) whatever the rules
   // said of it: a posture that fails rule 2 as given may fit once refined, and a turned
-  // candidate that passes may not refine to the right heading.
+  // candidate that passes may not refine to the right heading. When no refinement passes, the
+  // cheapest of them all is kept, the first's included.
   kBestValidAndFirst,
   kAll,  // every candidate (`scanloc refine`, the chapter's Tables 2, 5, 6, 8)
 };

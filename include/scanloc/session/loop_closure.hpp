@@ -227,7 +227,7 @@ class LoopCloser {
   LaserMounting mounting_;
   PoseGraph graph_;
   OdometryModel odometry_model_;
-  std::vector<ChainMisses> taught_;     // of each closure the odometry model learned from
+  std::vector<ChainMisses> taught_;  // of each closure the odometry model learned from
   struct Stretch {
     double start_path_m = 0.0;  // the path driven at its first node
     ChainMisses misses;
