@@ -48,13 +48,11 @@ std::vector<RankedCandidate> Evaluate(const MapView& map, const LaserScan& scan,
   return evaluated;
 }
 
-// The index of the lowest cost (3.11) among the first `count` (all by default), the first on
-// ties; -1 when none is finite.
-int Cheapest(const std::vector<RankedCandidate>& ranked,
-             std::size_t count = std::numeric_limits<std::size_t>::max()) {
+// The index of the lowest cost (3.11), the first on ties; -1 when none is finite.
+int Cheapest(const std::vector<RankedCandidate>& ranked) {
   int cheapest = -1;
   double best_cost = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < std::min(count, ranked.size()); ++i)
+  for (std::size_t i = 0; i < ranked.size(); ++i)
     if (ranked[i].cost < best_cost) {
       best_cost = ranked[i].cost;
       cheapest = static_cast<int>(i);
