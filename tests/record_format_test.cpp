@@ -104,5 +104,45 @@ TEST(RecordFormat, WhatTheSessionWritesTheReportReadsBackFieldForField) {
   EXPECT_GE(refined, 10);
 }
 
+// Every part a record may carry, on a real localisation: the line written must be what dump()
+// writes for the value it parses to (members by key, no space, numbers as dump() formats them).
+TEST(RecordFormat, TheLineWrittenIsWhatDumpWritesForItsValueWithEveryPartPresent) {
+  SequenceFileSource source(std::string(SCANLOC_SOURCE_DIR) +
+                            "/datasets/classroom/classroom.seq.jsonl");
+  SessionConfig config;
+  config.session.initial_pose = {1.126, 3.112, 0.0463};
+  Session session(
+      config, source.mounting(),
+      ReadLineMap(std::string(SCANLOC_SOURCE_DIR) + "/datasets/classroom/classroom.lines"),
+      PointMap{});
+  Iteration iteration;
+  IterationRecord record;
+  for (int i = 0; i < 4 && source.Next(iteration); ++i) record = session.Process(iteration);
+  ASSERT_NE(record.Kept(), nullptr);
+  record.lost = record.recovered = record.beyond_odometry = true;
+  record.correction_bound = CorrectionBound{0.25, 0.125};
+  record.state = "tentative";
+  record.hypotheses.push_back({});
+  record.hypotheses.back().T_world_robot = {1.0, 2.0, 0.5};
+  record.discarded = {"(1, 2, 0.5): not validated 2 scans in a row"};
+  ClosureAttempt closure;
+  closure.reason = "accepted";
+  closure.test = record.Kept()->test;
+  record.closure = closure;
+  record.search_window = SearchWindow{};
+  record.search = WideSearchResult{};
+  record.search->candidates.resize(2);
+  std::string line;
+  WriteRecord(record, line);
+  const nlohmann::json value = nlohmann::json::parse(line);
+  EXPECT_EQ(line, value.dump());
+  for (const char* key : {"lost", "recovered", "beyond_odometry", "correction_bound_m_rad", "state",
+                          "posed", "hypotheses", "discarded", "closure", "search", "candidates",
+                          "chosen", "refinement", "refined_candidates"})
+    EXPECT_TRUE(value.contains(key)) << key;
+  EXPECT_TRUE(value["closure"].contains("T_old_robot"));
+  EXPECT_EQ(value["search"]["found"], 2);
+}
+
 }  // namespace
 }  // namespace scanloc

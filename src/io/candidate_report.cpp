@@ -4,7 +4,10 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <string>
 #include <utility>
+
+#include "scanloc/io/json_writer.hpp"
 #include "scanloc/io/record_keys.hpp"
 
 namespace scanloc {
@@ -12,9 +15,29 @@ namespace keys = record_keys;
 
 namespace {
 
-// The best one's label, or null.
-nlohmann::json BestLabel(const std::vector<RankedCandidate>& ranked, int best) {
-  return best >= 0 ? nlohmann::json(ranked[best].candidate.label) : nlohmann::json(nullptr);
+template <class Write>
+nlohmann::json Parsed(const Write& write) {
+  std::string text;
+  JsonWriter out(text);
+  write(out);
+  return nlohmann::json::parse(text);
+}
+
+void WriteCorrection(JsonWriter& out, const Pose2D& from, const Pose2D& to) {
+  out.BeginArray();
+  out.Value(1e3 * (to.x_m - from.x_m));
+  out.Value(1e3 * (to.y_m - from.y_m));
+  out.Value(1e3 * NormalizeAngle(to.yaw_rad - from.yaw_rad));
+  out.EndArray();
+}
+
+// "best": the best one's label, or null.
+void WriteBestLabel(JsonWriter& out, const std::vector<RankedCandidate>& ranked, int best) {
+  out.Key(keys::kBest);
+  if (best >= 0)
+    out.Value(ranked[best].candidate.label);
+  else
+    out.Null();
 }
 
 }  // namespace
@@ -78,102 +101,146 @@ void PrintRefinementTable(std::ostream& out, const LocalisationResult& result) {
     out << "problem: no refined candidate passed the validation rules\n";
 }
 
-// The objects of every record are built member by member: nlohmann's initializer lists build
-// a two-element array per member first (twice the time, a scan's record after record).
+// Each object is written once, by its writer; the nlohmann values of the commands' reports are
+// that text parsed (json_writer.hpp: the writer orders the members as dump() does).
+
+void WriteJson(JsonWriter& out, const LikelihoodTestResult& t) {
+  out.BeginObject();
+  out.Member(keys::kValidPairs, t.valid_pairs);
+  out.Member(keys::kMatchPairs, t.match_pairs);
+  out.Member(keys::kMatchRatio, t.MatchRatio());
+  out.Member(keys::kExpectValueM, t.expect_value_m);
+  out.Member(keys::kDispersionM2, t.dispersion_m2);
+  out.Member(keys::kSqrtDispersionM, std::sqrt(t.dispersion_m2));
+  out.Member(keys::kHistogram, t.histogram);
+  out.EndObject();
+}
+
+void WriteJson(JsonWriter& out, const LikelihoodDistanceResult& d) {
+  out.BeginObject();
+  out.Member(keys::kValidPairs, d.valid_pairs);
+  out.Member(keys::kWeightedPairs, d.weighted_pairs);
+  out.Member(keys::kExpectValueM, d.expect_value_m);
+  out.Member(keys::kDispersionM2, d.dispersion_m2);
+  out.Member(keys::kCostM2, d.cost_m2);
+  out.EndObject();
+}
+
+void WriteJson(JsonWriter& out, const Pose2D& p) {
+  out.BeginObject();
+  out.Member(keys::kXM, p.x_m);
+  out.Member(keys::kYM, p.y_m);
+  out.Member(keys::kYawRad, p.yaw_rad);
+  out.EndObject();
+}
+
+void WriteJson(JsonWriter& out, const RefinementResult& r) {
+  out.BeginObject();
+  out.Key(keys::kTWorldLaser);
+  WriteJson(out, r.T_world_laser);
+  out.Member(keys::kConverged, r.converged);
+  out.Member(keys::kIterations, r.iterations);
+  out.Key(keys::kLikelihoodTestBefore);
+  WriteJson(out, r.test_before);
+  out.Key(keys::kLikelihoodTestAfter);
+  WriteJson(out, r.test_after);
+  out.Key(keys::kLikelihoodDistanceBefore);
+  WriteJson(out, r.distance_before);
+  out.Key(keys::kLikelihoodDistanceAfter);
+  WriteJson(out, r.distance_after);
+  out.Member(keys::kDegenerate, r.degenerate);
+  out.Member(keys::kDegeneracy, r.degeneracy);
+  out.Member(keys::kTimeS, r.time_s);
+  if (r.has_covariance) {
+    out.Key(keys::kCovariance);
+    out.BeginArray();
+    for (int i = 0; i < 3; ++i) {
+      out.BeginArray();
+      for (int j = 0; j < 3; ++j) out.Value(r.covariance(i, j));
+      out.EndArray();
+    }
+    out.EndArray();
+  }
+  out.EndObject();
+}
+
+void WriteEvaluatedCandidates(JsonWriter& out, const LocalisationResult& result) {
+  out.BeginArray();
+  for (const auto& c : result.evaluated) {
+    out.BeginObject();
+    out.Member(keys::kLabel, c.candidate.label);
+    out.Key(keys::kTWorldRobot);
+    WriteJson(out, c.candidate.T_world_robot);
+    out.Key(keys::kTWorldLaser);
+    WriteJson(out, c.T_world_laser);
+    out.Key(keys::kLikelihoodTest);
+    WriteJson(out, c.test);
+    out.Key(keys::kLikelihoodDistance);
+    WriteJson(out, c.distance);
+    out.Member(keys::kCost, c.cost);
+    out.Member(keys::kValid, c.verdict == Verdict::kValid);
+    out.Member(keys::kReason, ToString(c.verdict));
+    out.Member(keys::kRank, c.rank);
+    out.EndObject();
+  }
+  out.EndArray();
+}
 
 nlohmann::json ToJson(const LikelihoodTestResult& t) {
-  nlohmann::json out = nlohmann::json::object();
-  out[keys::kValidPairs] = t.valid_pairs;
-  out[keys::kMatchPairs] = t.match_pairs;
-  out[keys::kMatchRatio] = t.MatchRatio();
-  out[keys::kExpectValueM] = t.expect_value_m;
-  out[keys::kDispersionM2] = t.dispersion_m2;
-  out[keys::kSqrtDispersionM] = std::sqrt(t.dispersion_m2);
-  out[keys::kHistogram] = t.histogram;
-  return out;
+  return Parsed([&](JsonWriter& out) { WriteJson(out, t); });
 }
 
 nlohmann::json ToJson(const LikelihoodDistanceResult& d) {
-  nlohmann::json out = nlohmann::json::object();
-  out[keys::kValidPairs] = d.valid_pairs;
-  out[keys::kWeightedPairs] = d.weighted_pairs;
-  out[keys::kExpectValueM] = d.expect_value_m;
-  out[keys::kDispersionM2] = d.dispersion_m2;
-  out[keys::kCostM2] = d.cost_m2;
-  return out;
+  return Parsed([&](JsonWriter& out) { WriteJson(out, d); });
 }
 
 nlohmann::json ToJson(const Pose2D& p) {
-  nlohmann::json out = nlohmann::json::object();
-  out[keys::kXM] = p.x_m;
-  out[keys::kYM] = p.y_m;
-  out[keys::kYawRad] = p.yaw_rad;
-  return out;
+  return Parsed([&](JsonWriter& out) { WriteJson(out, p); });
 }
 
 nlohmann::json ToJson(const RefinementResult& r) {
-  nlohmann::json out = nlohmann::json::object();
-  out[keys::kTWorldLaser] = ToJson(r.T_world_laser);
-  out[keys::kConverged] = r.converged;
-  out[keys::kIterations] = r.iterations;
-  out[keys::kLikelihoodTestBefore] = ToJson(r.test_before);
-  out[keys::kLikelihoodTestAfter] = ToJson(r.test_after);
-  out[keys::kLikelihoodDistanceBefore] = ToJson(r.distance_before);
-  out[keys::kLikelihoodDistanceAfter] = ToJson(r.distance_after);
-  out[keys::kDegenerate] = r.degenerate;
-  out[keys::kDegeneracy] = r.degeneracy;
-  out[keys::kTimeS] = r.time_s;
-  if (r.has_covariance) {
-    nlohmann::json rows = nlohmann::json::array();
-    for (int i = 0; i < 3; ++i)
-      rows.push_back({r.covariance(i, 0), r.covariance(i, 1), r.covariance(i, 2)});
-    out["covariance"] = rows;
-  }
-  return out;
+  return Parsed([&](JsonWriter& out) { WriteJson(out, r); });
 }
 
 nlohmann::json RefinedToJson(const LocalisationResult& result) {
-  nlohmann::json candidates = nlohmann::json::array();
-  for (const auto& c : result.refined) {
-    const Pose2D& a = c.candidate.T_world_robot;
-    const Pose2D& b = c.T_world_robot;
-    candidates.push_back({{keys::kLabel, c.candidate.label},
-                          {keys::kInitialTWorldRobot, ToJson(a)},
-                          {keys::kRefinedTWorldRobot, ToJson(b)},
-                          {keys::kCorrectionMmMmMrad,
-                           {1e3 * (b.x_m - a.x_m), 1e3 * (b.y_m - a.y_m),
-                            1e3 * NormalizeAngle(b.yaw_rad - a.yaw_rad)}},
-                          {keys::kRefinement, ToJson(*c.refinement)},
-                          {keys::kCost, c.cost},
-                          {keys::kValid, c.verdict == Verdict::kValid},
-                          {keys::kReason, ToString(c.verdict)},
-                          {keys::kRank, c.rank}});
-  }
-  nlohmann::json out = nlohmann::json::object();
-  out[keys::kCandidates] = std::move(candidates);  // moved: an initializer list would copy them
-  out[keys::kBest] = BestLabel(result.refined, result.best_refined);
-  return out;
+  return Parsed([&](JsonWriter& out) {
+    out.BeginObject();
+    out.Key(keys::kCandidates);
+    out.BeginArray();
+    for (const auto& c : result.refined) {
+      const Pose2D& a = c.candidate.T_world_robot;
+      const Pose2D& b = c.T_world_robot;
+      out.BeginObject();
+      out.Member(keys::kLabel, c.candidate.label);
+      out.Key(keys::kInitialTWorldRobot);
+      WriteJson(out, a);
+      out.Key(keys::kRefinedTWorldRobot);
+      WriteJson(out, b);
+      out.Key(keys::kCorrectionMmMmMrad);
+      WriteCorrection(out, a, b);
+      out.Key(keys::kRefinement);
+      WriteJson(out, *c.refinement);
+      out.Member(keys::kCost, c.cost);
+      out.Member(keys::kValid, c.verdict == Verdict::kValid);
+      out.Member(keys::kReason, ToString(c.verdict));
+      out.Member(keys::kRank, c.rank);
+      out.EndObject();
+    }
+    out.EndArray();
+    WriteBestLabel(out, result.refined, result.best_refined);
+    out.EndObject();
+  });
 }
 
 nlohmann::json EvaluatedToJson(const LocalisationResult& result) {
-  nlohmann::json candidates = nlohmann::json::array();
-  for (const auto& c : result.evaluated) {
-    nlohmann::json& candidate = candidates.emplace_back(nlohmann::json::object());
-    candidate[keys::kLabel] = c.candidate.label;
-    candidate[keys::kTWorldRobot] = ToJson(c.candidate.T_world_robot);
-    candidate[keys::kTWorldLaser] = ToJson(c.T_world_laser);
-    candidate[keys::kLikelihoodTest] = ToJson(c.test);
-    candidate[keys::kLikelihoodDistance] = ToJson(c.distance);
-    candidate[keys::kCost] = c.cost;
-    candidate[keys::kValid] = c.verdict == Verdict::kValid;
-    candidate[keys::kReason] = ToString(c.verdict);
-    candidate[keys::kRank] = c.rank;
-  }
-  nlohmann::json out = nlohmann::json::object();
-  out[keys::kCandidates] = std::move(candidates);  // moved: an initializer list would copy them
-  out[keys::kBest] = BestLabel(result.evaluated, result.best_evaluated);
-  out[keys::kProblems] = result.problems;
-  return out;
+  return Parsed([&](JsonWriter& out) {
+    out.BeginObject();
+    out.Key(keys::kCandidates);
+    WriteEvaluatedCandidates(out, result);
+    WriteBestLabel(out, result.evaluated, result.best_evaluated);
+    out.Member(keys::kProblems, result.problems);
+    out.EndObject();
+  });
 }
 
 }  // namespace scanloc

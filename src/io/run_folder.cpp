@@ -12,7 +12,7 @@
 #include "scanloc/common/parse_error.hpp"
 #include "scanloc/io/candidate_report.hpp"
 #include "scanloc/io/g2o_file.hpp"
-#include "scanloc/io/json_text.hpp"
+#include "scanloc/io/json_writer.hpp"
 #include "scanloc/io/occupancy_grid_io.hpp"
 #include "scanloc/io/record_keys.hpp"
 #include "scanloc/maps/point_map_io.hpp"
@@ -23,68 +23,154 @@ namespace keys = record_keys;
 namespace {
 
 // The refinements of one localisation, each re-validated, as the report lists them.
-nlohmann::json RefinedCandidatesJson(const LocalisationResult& localisation) {
-  nlohmann::json refined = nlohmann::json::array();
+void WriteRefinedCandidates(JsonWriter& out, const LocalisationResult& localisation) {
+  out.BeginArray();
   for (const RankedCandidate& candidate : localisation.refined) {
-    // Member by member, as the candidate reports (see candidate_report.cpp).
-    nlohmann::json& out = refined.emplace_back(nlohmann::json::object());
-    out[keys::kCandidate] = candidate.candidate.label;
-    out[keys::kTWorldLaser] = ToJson(candidate.T_world_laser);
-    out[keys::kCost] = candidate.cost;
-    out[keys::kRank] = candidate.rank;
-    out[keys::kValid] = candidate.verdict == Verdict::kValid;
-    out[keys::kReason] = ToString(candidate.verdict);
-    out[keys::kExpectValueM] = candidate.test.expect_value_m;
-    out[keys::kMatchRatio] = candidate.test.MatchRatio();
+    out.BeginObject();
+    out.Member(keys::kCandidate, candidate.candidate.label);
+    out.Key(keys::kTWorldLaser);
+    WriteJson(out, candidate.T_world_laser);
+    out.Member(keys::kCost, candidate.cost);
+    out.Member(keys::kRank, candidate.rank);
+    out.Member(keys::kValid, candidate.verdict == Verdict::kValid);
+    out.Member(keys::kReason, ToString(candidate.verdict));
+    out.Member(keys::kExpectValueM, candidate.test.expect_value_m);
+    out.Member(keys::kMatchRatio, candidate.test.MatchRatio());
+    out.EndObject();
   }
-  return refined;
+  out.EndArray();
 }
 
 // A loop closure tried: where, against how many old nodes, the rules' verdict and the correction.
-nlohmann::json ClosureJson(const ClosureAttempt& c) {
-  nlohmann::json out = {{keys::kAccepted, c.accepted},
-                        {keys::kReason, c.reason},
-                        {keys::kNode, c.node},
-                        {keys::kOldNode, c.old_node},
-                        {keys::kOldIteration, c.old_iteration},
-                        {keys::kLocalNodes, c.local_nodes},
-                        {keys::kPathSinceM, c.path_since_m},
-                        {keys::kChainSigmaM, c.chain_sigma_m},
-                        {keys::kChainSigmaRad, c.chain_sigma_rad},
-                        {keys::kHalfWidthM, c.window.half_width_m},
-                        {keys::kHalfYawRad, c.window.half_yaw_rad},
-                        {keys::kPredictedShiftM, c.predicted_shift_m},
-                        {keys::kSolveDeferred, c.solve_deferred},
-                        {keys::kLargestShiftM, c.largest_shift_m},
-                        {keys::kSolveIterations, c.solve_iterations},
-                        {keys::kRendered, c.rendered},
-                        {keys::kTimeS, c.time_s}};
+void WriteClosure(JsonWriter& out, const ClosureAttempt& c) {
+  out.BeginObject();
+  out.Member(keys::kAccepted, c.accepted);
+  out.Member(keys::kReason, c.reason);
+  out.Member(keys::kNode, c.node);
+  out.Member(keys::kOldNode, c.old_node);
+  out.Member(keys::kOldIteration, c.old_iteration);
+  out.Member(keys::kLocalNodes, c.local_nodes);
+  out.Member(keys::kPathSinceM, c.path_since_m);
+  out.Member(keys::kChainSigmaM, c.chain_sigma_m);
+  out.Member(keys::kChainSigmaRad, c.chain_sigma_rad);
+  out.Member(keys::kHalfWidthM, c.window.half_width_m);
+  out.Member(keys::kHalfYawRad, c.window.half_yaw_rad);
+  out.Member(keys::kPredictedShiftM, c.predicted_shift_m);
+  out.Member(keys::kSolveDeferred, c.solve_deferred);
+  out.Member(keys::kLargestShiftM, c.largest_shift_m);
+  out.Member(keys::kSolveIterations, c.solve_iterations);
+  out.Member(keys::kRendered, c.rendered);
+  out.Member(keys::kTimeS, c.time_s);
   if (c.test) {  // something was refined: the posture matched and the closure's measurement
-    out[keys::kMatched] = ToJson(c.T_world_robot_matched);
-    out[keys::kTOldRobot] = ToJson(c.T_old_robot);
-    out[keys::kExpectValueM] = c.test->expect_value_m;
-    out[keys::kMatchRatio] = c.test->MatchRatio();
+    out.Key(keys::kMatched);
+    WriteJson(out, c.T_world_robot_matched);
+    out.Key(keys::kTOldRobot);
+    WriteJson(out, c.T_old_robot);
+    out.Member(keys::kExpectValueM, c.test->expect_value_m);
+    out.Member(keys::kMatchRatio, c.test->MatchRatio());
   }
-  return out;
+  out.EndObject();
 }
 
 // The hypotheses a localisation holds, best first.
-nlohmann::json HypothesesJson(const std::vector<Hypothesis>& hypotheses) {
-  nlohmann::json out = nlohmann::json::array();
-  for (const Hypothesis& h : hypotheses)
-    out.push_back({{keys::kTWorldRobot, ToJson(h.T_world_robot)},
-                   {keys::kConfirmedInRow, h.confirmed_in_row},
-                   {keys::kUnconfirmedInRow, h.unconfirmed_in_row},
-                   {keys::kConfirmations, h.confirmations},
-                   {keys::kSearches, h.searches},
-                   {keys::kHeld, h.held},
-                   {keys::kCost, h.cost},
-                   {keys::kValidated, h.validated},
-                   {keys::kReason, ToString(h.verdict)},
-                   {keys::kExpectValueM, h.expect_value_m},
-                   {keys::kMatchRatio, h.match_ratio},
-                   {keys::kTruncatedMeanM, h.truncated_mean_m}});
-  return out;
+void WriteHypotheses(JsonWriter& out, const std::vector<Hypothesis>& hypotheses) {
+  out.BeginArray();
+  for (const Hypothesis& h : hypotheses) {
+    out.BeginObject();
+    out.Key(keys::kTWorldRobot);
+    WriteJson(out, h.T_world_robot);
+    out.Member(keys::kConfirmedInRow, h.confirmed_in_row);
+    out.Member(keys::kUnconfirmedInRow, h.unconfirmed_in_row);
+    out.Member(keys::kConfirmations, h.confirmations);
+    out.Member(keys::kSearches, h.searches);
+    out.Member(keys::kHeld, h.held);
+    out.Member(keys::kCost, h.cost);
+    out.Member(keys::kValidated, h.validated);
+    out.Member(keys::kReason, ToString(h.verdict));
+    out.Member(keys::kExpectValueM, h.expect_value_m);
+    out.Member(keys::kMatchRatio, h.match_ratio);
+    out.Member(keys::kTruncatedMeanM, h.truncated_mean_m);
+    out.EndObject();
+  }
+  out.EndArray();
+}
+
+// The wide search a lost session made before localising the scan: its window and what it found.
+void WriteSearch(JsonWriter& out, const SearchWindow& w, const WideSearchResult& search) {
+  out.BeginObject();
+  out.Key(keys::kCentre);
+  WriteJson(out, w.centre);
+  out.Member(keys::kHalfWidthM, w.half_width_m);
+  out.Member(keys::kHalfYawRad, w.half_yaw_rad);
+  out.Member(keys::kHeadings, search.headings);
+  out.Member(keys::kNodesScored, search.nodes_scored);
+  out.Member(keys::kFound, search.candidates.size());
+  out.Member(keys::kTimeS, search.time_s);
+  out.EndObject();
+}
+
+// Where the scan came from, the posture kept and what the rules said of it, what it did to the
+// map and the time it took.
+void WriteOutcome(JsonWriter& out, const IterationRecord& r) {
+  const LocalisationResult* localisation = r.localisation ? &*r.localisation : nullptr;
+  out.Member(keys::kIndex, r.index);
+  out.Member(keys::kTimestampS, r.timestamp_s);
+  out.Member(keys::kOrigin, r.origin);
+  out.Member(keys::kSkipped, r.skipped);
+  out.Member(keys::kFirst, r.first);
+  out.Key(keys::kPrediction);
+  WriteJson(out, r.prediction);
+  out.Key(keys::kTWorldRobot);
+  WriteJson(out, r.T_world_robot);
+  out.Member(keys::kValidated, r.validated);
+  out.Member(keys::kReason, ToString(r.verdict));
+  out.Member(keys::kInserted, r.inserted);
+  out.Member(keys::kCarved, r.carved);
+  out.Member(keys::kMapPoints, r.map_points);
+  out.Key(keys::kTimingsMs);
+  out.BeginObject();
+  out.Member(keys::kEvaluate, 1e3 * (localisation ? localisation->evaluate_s : 0.0));
+  out.Member(keys::kRefine, 1e3 * (localisation ? localisation->refine_s : 0.0));
+  out.Member(keys::kInsert, 1e3 * r.insert_s);
+  out.Member(keys::kTotal, 1e3 * r.total_s);
+  out.EndObject();
+  if (r.lost) out.Member(keys::kLost, true);
+  if (r.recovered) out.Member(keys::kRecovered, true);
+}
+
+// The candidates tried and the refinement kept, when the scan was localised.
+void WriteLocalisation(JsonWriter& out, const IterationRecord& r) {
+  const LocalisationResult* localisation = r.localisation ? &*r.localisation : nullptr;
+  const RankedCandidate* kept = r.Kept();
+  if (localisation && !localisation->evaluated.empty()) {
+    out.Key(keys::kCandidates);
+    WriteEvaluatedCandidates(out, *localisation);
+    out.Key(keys::kChosen);
+    if (kept)
+      out.Value(kept->candidate.label);
+    else
+      out.Null();
+    out.Member(keys::kProblems, localisation->problems);
+    out.Member(keys::kMaxExpectValueM, r.max_expect_value_m);
+    out.Member(keys::kSignatureExpectValueM, r.signature_expect_value_m);
+    if (r.correction_bound)
+      out.Member(keys::kCorrectionBound, std::vector<double>{r.correction_bound->translation_m,
+                                                             r.correction_bound->rotation_rad});
+  }
+  if (!kept) return;
+  // The posture the correction gate refused: the kept refinement, the scan took the prediction.
+  if (r.beyond_odometry) {
+    out.Key(keys::kBeyondOdometry);
+    WriteJson(out, kept->T_world_robot);
+  }
+  out.Key(keys::kRefinement);
+  WriteJson(out, *kept->refinement);
+  out.Key(keys::kRefinedCandidates);
+  WriteRefinedCandidates(out, *localisation);
+  const Pose2D correction = Between(r.prediction, r.T_world_robot);
+  out.Member(
+      keys::kCorrectionFromPredictionMmMmMrad,
+      std::vector<double>{1e3 * correction.x_m, 1e3 * correction.y_m, 1e3 * correction.yaw_rad});
 }
 
 // The files a session writes into its run folder, and those it writes at the end.
@@ -119,70 +205,33 @@ std::string DifferingPaths(const nlohmann::json& a, const nlohmann::json& b) {
 
 }  // namespace
 
-nlohmann::json ToJson(const IterationRecord& r) {
-  const LocalisationResult* localisation = r.localisation ? &*r.localisation : nullptr;
-  const double evaluate_s = localisation ? localisation->evaluate_s : 0.0;
-  const double refine_s = localisation ? localisation->refine_s : 0.0;
-  nlohmann::json out = nlohmann::json::object();  // member by member (see candidate_report.cpp)
-  out[keys::kIndex] = r.index;
-  out[keys::kTimestampS] = r.timestamp_s;
-  out[keys::kOrigin] = r.origin;
-  out[keys::kSkipped] = r.skipped;
-  out[keys::kFirst] = r.first;
-  out[keys::kPrediction] = ToJson(r.prediction);
-  out[keys::kTWorldRobot] = ToJson(r.T_world_robot);
-  out[keys::kValidated] = r.validated;
-  out[keys::kReason] = ToString(r.verdict);
-  out[keys::kInserted] = r.inserted;
-  out[keys::kCarved] = r.carved;
-  out[keys::kMapPoints] = r.map_points;
-  nlohmann::json& timings = out[keys::kTimingsMs];
-  timings[keys::kEvaluate] = 1e3 * evaluate_s;
-  timings[keys::kRefine] = 1e3 * refine_s;
-  timings[keys::kInsert] = 1e3 * r.insert_s;
-  timings[keys::kTotal] = 1e3 * r.total_s;
-  if (r.lost) out[keys::kLost] = true;
-  if (r.recovered) out[keys::kRecovered] = true;
+void WriteRecord(const IterationRecord& r, std::string& text) {
+  JsonWriter out(text);
+  out.BeginObject();
+  WriteOutcome(out, r);
   if (!r.state.empty()) {
-    out[keys::kState] = r.state;
-    out[keys::kPosed] = r.posed;
-    out[keys::kHypotheses] = HypothesesJson(r.hypotheses);
-    if (!r.discarded.empty()) out[keys::kDiscarded] = r.discarded;
+    out.Member(keys::kState, r.state);
+    out.Member(keys::kPosed, r.posed);
+    out.Key(keys::kHypotheses);
+    WriteHypotheses(out, r.hypotheses);
+    if (!r.discarded.empty()) out.Member(keys::kDiscarded, r.discarded);
   }
-  if (r.closure) out[keys::kClosure] = ClosureJson(*r.closure);
+  if (r.closure) {
+    out.Key(keys::kClosure);
+    WriteClosure(out, *r.closure);
+  }
   if (r.search_window && r.search) {
-    const SearchWindow& w = *r.search_window;
-    out[keys::kSearch] = {{keys::kCentre, ToJson(w.centre)},
-                          {keys::kHalfWidthM, w.half_width_m},
-                          {keys::kHalfYawRad, w.half_yaw_rad},
-                          {keys::kHeadings, r.search->headings},
-                          {keys::kNodesScored, r.search->nodes_scored},
-                          {keys::kFound, r.search->candidates.size()},
-                          {keys::kTimeS, r.search->time_s}};
+    out.Key(keys::kSearch);
+    WriteSearch(out, *r.search_window, *r.search);
   }
-  const RankedCandidate* kept = r.Kept();
-  if (localisation && !localisation->evaluated.empty()) {
-    // Moved, not copied: the candidates are the bulk of a record.
-    nlohmann::json evaluated = EvaluatedToJson(*localisation);
-    out["candidates"] = std::move(evaluated["candidates"]);
-    out["chosen"] = kept ? nlohmann::json(kept->candidate.label) : nlohmann::json(nullptr);
-    out["problems"] = localisation->problems;
-    out[keys::kMaxExpectValueM] = r.max_expect_value_m;
-    out[keys::kSignatureExpectValueM] = r.signature_expect_value_m;
-    if (r.correction_bound)
-      out[keys::kCorrectionBound] = {r.correction_bound->translation_m,
-                                     r.correction_bound->rotation_rad};
-  }
-  if (kept) {
-    // The posture the correction gate refused: the kept refinement, the scan took the prediction.
-    if (r.beyond_odometry) out[keys::kBeyondOdometry] = ToJson(kept->T_world_robot);
-    out["refinement"] = ToJson(*kept->refinement);
-    out["refined_candidates"] = RefinedCandidatesJson(*localisation);
-    const Pose2D correction = Between(r.prediction, r.T_world_robot);
-    out["correction_from_prediction_mm_mm_mrad"] = {1e3 * correction.x_m, 1e3 * correction.y_m,
-                                                    1e3 * correction.yaw_rad};
-  }
-  return out;
+  WriteLocalisation(out, r);
+  out.EndObject();
+}
+
+nlohmann::json ToJson(const IterationRecord& record) {
+  std::string text;
+  WriteRecord(record, text);
+  return nlohmann::json::parse(text);
 }
 
 RunFolder::RunFolder(const std::string& directory, bool overwrite)
@@ -249,10 +298,10 @@ void RunFolder::Record(const IterationRecord& record) {
     RemoveFiles(directory_, kFinalFiles);
   }
   appended_ = true;
-  std::string line;
-  AppendJsonText(ToJson(record), line);
-  line += '\n';
-  records_ << line;
+  line_.clear();
+  WriteRecord(record, line_);
+  line_ += '\n';
+  records_ << line_;
   records_.flush();  // a line is complete on disk before the next iteration starts
   if (!records_)     // the failed write(2)'s errno, e.g. "No space left on device"
     throw std::runtime_error("cannot write " + Path("iterations.jsonl") + ": " +

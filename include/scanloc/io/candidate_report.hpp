@@ -16,6 +16,17 @@ void PrintCandidateTable(std::ostream& out, const LocalisationResult& result);
 // The refinements (result.refined).
 void PrintRefinementTable(std::ostream& out, const LocalisationResult& result);
 
+class JsonWriter;
+
+// The objects of the iteration records and of the reports, each written once (the nlohmann
+// values below are their text, parsed).
+void WriteJson(JsonWriter& out, const LikelihoodTestResult& test);
+void WriteJson(JsonWriter& out, const LikelihoodDistanceResult& distance);
+void WriteJson(JsonWriter& out, const Pose2D& pose);
+void WriteJson(JsonWriter& out, const RefinementResult& refinement);
+// The candidates as given with their tests: EvaluatedToJson's "candidates".
+void WriteEvaluatedCandidates(JsonWriter& out, const LocalisationResult& result);
+
 nlohmann::json ToJson(const LikelihoodTestResult& test);
 nlohmann::json ToJson(const RefinementResult& refinement);
 // {"candidates": the refinements, each before and after, "best"}.

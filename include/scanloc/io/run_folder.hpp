@@ -18,6 +18,10 @@
 
 namespace scanloc {
 
+// The record's line of iterations.jsonl (without its newline), appended to `text`: the record
+// format's one writer (keys: record_keys.hpp).
+void WriteRecord(const IterationRecord& record, std::string& text);
+// The same, parsed.
 nlohmann::json ToJson(const IterationRecord& record);
 
 enum class RunFolderOpening {
@@ -67,6 +71,7 @@ class RunFolder {
   bool appended_ = false;  // a record was written by this process
   std::vector<RecordedIteration> recorded_;
   std::ofstream records_;
+  std::string line_;  // the record being written; its capacity is reused
   std::vector<StampedPose> trajectory_;
   std::vector<std::size_t> trajectory_records_;  // the record index of each trajectory posture
   std::vector<StampedPose> online_trajectory_;   // before Correct, when it corrected anything
