@@ -442,3 +442,63 @@ TEST(LoopCloser, TheFinalRenderCarvesWhatOnlyTheLastNodesSawWhereEarlierNodesSaw
 
 }  // namespace
 }  // namespace scanloc
+
+namespace scanloc {
+namespace {
+
+// A node at the origin, then scans moved 0.02 m each by the odometry: `skipped` of them skipped
+// (their posture the prediction), then one localised 0.03 m, 0.02 m and 0.01 rad beyond its
+// prediction, at the given times.
+LoopCloser SkippedRun(const std::vector<double>& times_s, std::vector<Pose2D>& predictions) {
+  LoopCloser closer(Enabled(), LaserMounting{});
+  closer.AddNode(0, LaserScan{}, Pose2D(), std::nullopt);
+  closer.Anchor(0, Pose2D(), true, std::nullopt, AnchorTiming{times_s[0], false, Pose2D()});
+  predictions = {Pose2D()};
+  for (std::size_t k = 1; k < times_s.size(); ++k) {
+    predictions.push_back(Pose2D(0.02 * static_cast<double>(k), 0.0, 0.0));
+    const bool skipped = k + 1 < times_s.size();
+    const Pose2D kept = skipped ? predictions[k] : predictions[k] * Pose2D(0.03, 0.02, 0.01);
+    closer.Anchor(k, kept, true, std::nullopt, AnchorTiming{times_s[k], skipped, predictions[k]});
+  }
+  return closer;
+}
+
+TEST(LoopCloser, SkippedScansTakeTheNextLocalisedScansCorrectionInShareOfTheTimeElapsed) {
+  std::vector<Pose2D> predictions;
+  const LoopCloser closer = SkippedRun({0.0, 0.1, 0.3, 0.4}, predictions);
+  const std::vector<std::optional<Pose2D>> corrected = closer.CorrectedPostures();
+  ASSERT_EQ(corrected.size(), 4u);
+  const Pose2D last = *corrected[3];
+  const Eigen::Vector3d correction(last.x_m - predictions[3].x_m, last.y_m - predictions[3].y_m,
+                                   last.yaw_rad - predictions[3].yaw_rad);
+  EXPECT_NEAR(correction.z(), 0.01, 1e-12);
+  for (const auto& [k, share] : {std::pair<int, double>{1, 0.25}, {2, 0.75}}) {
+    SCOPED_TRACE(k);
+    EXPECT_NEAR(corrected[k]->x_m, predictions[k].x_m + share * correction.x(), 1e-12);
+    EXPECT_NEAR(corrected[k]->y_m, predictions[k].y_m + share * correction.y(), 1e-12);
+    EXPECT_NEAR(corrected[k]->yaw_rad, share * 0.01, 1e-12);
+  }
+  EXPECT_NEAR(corrected[0]->x_m, 0.0, 1e-12);  // the localised scans keep their postures
+}
+
+TEST(LoopCloser, SkippedScansWhoseTimeGoesBackShareByTheirCount) {
+  std::vector<Pose2D> predictions;
+  const LoopCloser closer = SkippedRun({5.0, 5.0, 4.0, 4.0}, predictions);
+  const std::vector<std::optional<Pose2D>> corrected = closer.CorrectedPostures();
+  EXPECT_NEAR(corrected[1]->yaw_rad, 0.01 / 3.0, 1e-12);
+  EXPECT_NEAR(corrected[2]->yaw_rad, 0.02 / 3.0, 1e-12);
+}
+
+TEST(LoopCloser, SkippedScansWithNoLocalisedScanAfterThemKeepTheirPrediction) {
+  LoopCloser closer(Enabled(), LaserMounting{});
+  closer.AddNode(0, LaserScan{}, Pose2D(), std::nullopt);
+  closer.Anchor(0, Pose2D(), true, std::nullopt, AnchorTiming{0.0, false, Pose2D()});
+  const Pose2D prediction(0.02, 0.0, 0.0);
+  closer.Anchor(1, prediction, true, std::nullopt, AnchorTiming{0.1, true, prediction});
+  const std::vector<std::optional<Pose2D>> corrected = closer.CorrectedPostures();
+  EXPECT_NEAR(corrected[1]->x_m, 0.02, 1e-12);
+  EXPECT_NEAR(corrected[1]->yaw_rad, 0.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace scanloc

@@ -138,13 +138,27 @@ void LoopCloser::AddNode(std::size_t iteration, const LaserScan& scan, const Pos
 }
 
 void LoopCloser::Anchor(std::size_t iteration, const Pose2D& T_world_robot, bool confirmed,
-                        const std::optional<Pose2D>& odometry) {
+                        const std::optional<Pose2D>& odometry,
+                        const std::optional<AnchorTiming>& timing) {
   if (nodes_.empty()) return;
   if (anchors_.size() <= iteration) anchors_.resize(iteration + 1);
   const std::size_t node = nodes_.size() - 1;
-  anchors_[iteration] = Anchoring{node, Between(graph_.nodes()[node], T_world_robot), std::nullopt};
+  Anchoring& anchor = anchors_[iteration].emplace();
+  anchor.node = node;
+  anchor.T_node_robot = Between(graph_.nodes()[node], T_world_robot);
+  anchor.timing = timing;
   if (!confirmed && odometry && nodes_[node].odometry)
-    anchors_[iteration]->T_node_robot_odometry = Between(*nodes_[node].odometry, *odometry);
+    anchor.T_node_robot_odometry = Between(*nodes_[node].odometry, *odometry);
+  // No solve has moved the skipped scans' node since they were anchored to it.
+  if (timing && !timing->skipped && iteration > 0 && Skipped(iteration - 1)) {
+    anchor.prediction_node = anchors_[iteration - 1]->node;
+    anchor.T_node_prediction = Between(graph_.nodes()[*anchor.prediction_node], timing->prediction);
+  }
+}
+
+bool LoopCloser::Skipped(std::size_t iteration) const {
+  return iteration < anchors_.size() && anchors_[iteration] && anchors_[iteration]->timing &&
+         anchors_[iteration]->timing->skipped;
 }
 
 // The old nodes the scan is matched on: the nearest node old enough, and the nodes laid just
@@ -544,7 +558,33 @@ std::vector<std::optional<Pose2D>> LoopCloser::CorrectedPostures() const {
                                                            ? *anchors_[i]->T_node_robot_odometry
                                                            : anchors_[i]->T_node_robot);
   }
+  SpreadSkippedCorrections(postures);
   return postures;
+}
+
+void LoopCloser::SpreadSkippedCorrections(std::vector<std::optional<Pose2D>>& postures) const {
+  for (std::size_t b = 1; b < anchors_.size(); ++b) {
+    const std::optional<Anchoring>& last = anchors_[b];
+    if (!last || !last->prediction_node) continue;
+    std::size_t first = b;  // the run of skipped scans before b
+    while (first > 0 && Skipped(first - 1)) --first;
+    const std::size_t a = first - 1;  // the localised scan before them
+    if (first == 0 || !anchors_[a] || !anchors_[a]->timing) continue;
+    const Pose2D predicted = graph_.nodes()[*last->prediction_node] * last->T_node_prediction;
+    const Pose2D& localised = *postures[b];
+    const Eigen::Vector3d correction(localised.x_m - predicted.x_m, localised.y_m - predicted.y_m,
+                                     NormalizeAngle(localised.yaw_rad - predicted.yaw_rad));
+    const double t_a = anchors_[a]->timing->timestamp_s, t_b = last->timing->timestamp_s;
+    for (std::size_t k = first; k < b; ++k) {
+      const double share =
+          t_b > t_a ? std::clamp((anchors_[k]->timing->timestamp_s - t_a) / (t_b - t_a), 0.0, 1.0)
+                    : static_cast<double>(k - a) / static_cast<double>(b - a);
+      const Pose2D& skipped = *postures[k];
+      postures[k] =
+          Pose2D(skipped.x_m + share * correction.x(), skipped.y_m + share * correction.y(),
+                 NormalizeAngle(skipped.yaw_rad + share * correction.z()));
+    }
+  }
 }
 
 }  // namespace scanloc

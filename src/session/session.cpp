@@ -358,7 +358,8 @@ void Session::MaybeCloseLoop(IterationRecord& record, const Iteration& iteration
     loop_.AddNode(record.index, iteration.scan, record.T_world_robot, covariance,
                   iteration.odometry);
   loop_.Anchor(record.index, record.T_world_robot, record.validated || record.skipped,
-               iteration.odometry);
+               iteration.odometry,
+               AnchorTiming{record.timestamp_s, record.skipped, record.prediction});
   if (!record.inserted) return;
   record.closure = loop_.MaybeClose(localisation_, point_map_.options());
   if (!record.closure || !record.closure->rendered) {

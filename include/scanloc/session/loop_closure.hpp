@@ -124,6 +124,13 @@ struct ClosureAttempt {
   double time_s = 0.0;
 };
 
+// When a record's scan was taken, whether it was skipped, and the prediction it started from.
+struct AnchorTiming {
+  double timestamp_s = 0.0;
+  bool skipped = false;
+  Pose2D prediction;  // T_world_robot: the last posture moved by the odometry
+};
+
 class LoopCloser {
  public:
   LoopCloser(const LoopClosureOptions& options, const LaserMounting& mounting);
@@ -140,8 +147,12 @@ class LoopCloser {
   // the odometry model says the odometry knows the motion from the node at least as well as a
   // matched step knows its own, the corrected posture follows the odometry, which the scan could
   // not disprove, rather than an unconfirmed match.
+  // With `timing`, a scan that was skipped (not localised: it kept the odometry's prediction)
+  // also takes a share of the correction the next localised scan made to its own prediction
+  // (CorrectedPostures).
   void Anchor(std::size_t iteration, const Pose2D& T_world_robot, bool confirmed = true,
-              const std::optional<Pose2D>& odometry = std::nullopt);
+              const std::optional<Pose2D>& odometry = std::nullopt,
+              const std::optional<AnchorTiming>& timing = std::nullopt);
   // Tries a closure for the newest node when one is due. On an accepted one, the graph is solved
   // and the caller renders the map again when the attempt says so.
   std::optional<ClosureAttempt> MaybeClose(const LocalisationOptions& localisation,
@@ -166,7 +177,11 @@ class LoopCloser {
   // The newest node's posture (after a solve it moves).
   std::optional<Pose2D> NewestNode() const;
   // Each anchored record's posture following its node, by record index (none before the first
-  // node).
+  // node). A run of skipped scans between two localised ones (anchored with timings) takes a
+  // share of the correction the second made to its own prediction: the odometry that carried the
+  // skipped scans erred until the second as it did there (its drift, the scans' latency). The
+  // share grows with the time since the first (with the count of scans when time stands still
+  // or goes back).
   std::vector<std::optional<Pose2D>> CorrectedPostures() const;
 
   const PoseGraph& graph() const { return graph_; }
@@ -188,6 +203,10 @@ class LoopCloser {
     std::size_t node = 0;
     Pose2D T_node_robot;
     std::optional<Pose2D> T_node_robot_odometry;  // of an unconfirmed scan
+    std::optional<AnchorTiming> timing;
+    // A localised scan after skipped ones: its prediction, from the node they are anchored to.
+    std::optional<std::size_t> prediction_node;
+    Pose2D T_node_prediction;
   };
 
   struct PriorPoints {
@@ -196,6 +215,8 @@ class LoopCloser {
   };
 
   bool ByOdometry(const Anchoring& anchor) const;
+  bool Skipped(std::size_t iteration) const;
+  void SpreadSkippedCorrections(std::vector<std::optional<Pose2D>>& postures) const;
   std::vector<std::size_t> OldNodesNear(const Pose2D& T_world_robot, double path_m) const;
   std::optional<ClosureAttempt> Try(const LocalisationOptions& localisation,
                                     const PointMapOptions& map_options);
