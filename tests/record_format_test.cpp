@@ -66,15 +66,23 @@ void ExpectRefinements(const IterationRow& row, const IterationRecord& record) {
   }
 }
 
-TEST(RecordFormat, WhatTheSessionWritesTheReportReadsBackFieldForField) {
-  SequenceFileSource source(std::string(SCANLOC_SOURCE_DIR) +
-                            "/datasets/classroom/classroom.seq.jsonl");
+std::string ClassroomSequence() {
+  return std::string(SCANLOC_SOURCE_DIR) + "/datasets/classroom/classroom.seq.jsonl";
+}
+
+// A session on the classroom's line map from its first true posture.
+Session ClassroomSession(const SequenceFileSource& source) {
   SessionConfig config;
   config.session.initial_pose = {1.126, 3.112, 0.0463};
-  Session session(
+  return Session(
       config, source.mounting(),
       ReadLineMap(std::string(SCANLOC_SOURCE_DIR) + "/datasets/classroom/classroom.lines"),
       PointMap{});
+}
+
+TEST(RecordFormat, WhatTheSessionWritesTheReportReadsBackFieldForField) {
+  SequenceFileSource source(ClassroomSequence());
+  Session session = ClassroomSession(source);
   Iteration iteration;
   int localised = 0, refined = 0;
   for (int i = 0; i < 12 && source.Next(iteration); ++i) {
@@ -107,14 +115,8 @@ TEST(RecordFormat, WhatTheSessionWritesTheReportReadsBackFieldForField) {
 // Every part a record may carry, on a real localisation: the line written must be what dump()
 // writes for the value it parses to (members by key, no space, numbers as dump() formats them).
 TEST(RecordFormat, TheLineWrittenIsWhatDumpWritesForItsValueWithEveryPartPresent) {
-  SequenceFileSource source(std::string(SCANLOC_SOURCE_DIR) +
-                            "/datasets/classroom/classroom.seq.jsonl");
-  SessionConfig config;
-  config.session.initial_pose = {1.126, 3.112, 0.0463};
-  Session session(
-      config, source.mounting(),
-      ReadLineMap(std::string(SCANLOC_SOURCE_DIR) + "/datasets/classroom/classroom.lines"),
-      PointMap{});
+  SequenceFileSource source(ClassroomSequence());
+  Session session = ClassroomSession(source);
   Iteration iteration;
   IterationRecord record;
   for (int i = 0; i < 4 && source.Next(iteration); ++i) record = session.Process(iteration);

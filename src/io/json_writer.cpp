@@ -60,26 +60,25 @@ void JsonWriter::BeforeValue() {
 }
 
 void JsonWriter::BeginObject() {
+  Open('{', true);
+}
+
+void JsonWriter::BeginArray() {
+  Open('[', false);
+}
+
+// A new object or array at the next depth, its frame's buffers reused.
+void JsonWriter::Open(char bracket, bool object) {
   BeforeValue();
-  text_ += '{';
+  text_ += bracket;
   if (depth_ == frames_.size()) frames_.emplace_back();
   Frame& frame = frames_[depth_++];
-  frame.object = true;
+  frame.object = object;
   frame.awaiting_value = false;
   frame.in_order = true;
   frame.count = 0;
   frame.members.clear();
   frame.keys.clear();
-}
-
-void JsonWriter::BeginArray() {
-  BeforeValue();
-  text_ += '[';
-  if (depth_ == frames_.size()) frames_.emplace_back();
-  Frame& frame = frames_[depth_++];
-  frame.object = false;
-  frame.awaiting_value = false;
-  frame.count = 0;
 }
 
 void JsonWriter::EndObject() {

@@ -79,6 +79,7 @@ class JsonWriter {
   };
 
   void BeforeValue();
+  void Open(char bracket, bool object);
   void AppendSigned(std::int64_t value);
   void AppendUnsigned(std::uint64_t value);
   void SortMembers(Frame& frame);
