@@ -1,5 +1,7 @@
 #include "scanloc/maps/point_map.hpp"
 
+#include "scanloc/geometry/approximate_bearing.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -363,10 +365,7 @@ std::size_t PointMap::CarveFreeSpace(const LaserScan& scan, const Pose2D& T_worl
     const Eigen::Vector2d q = T_laser_world(s.points[index]);
     const double range = q.norm();
     if (range <= scan.layout.range_min_m) continue;
-    const double beam = std::round(
-        NormalizeAngle(std::atan2(q.y(), q.x()) - angle_min - 0.5 * (n - 1) * increment) /
-            increment +
-        0.5 * (n - 1));
+    const double beam = NearestBeamPosition(q, angle_min, increment, n);
     if (!(beam >= 0.0) || beam > static_cast<double>(n - 1)) continue;
     const double hit = nearest[static_cast<std::size_t>(beam)];
     if (hit < 0.0 || range >= hit - margin_m - margin_per_m * hit) continue;
