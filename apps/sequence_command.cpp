@@ -117,6 +117,12 @@ void PrintOutcome(const SessionRun& run, const nlohmann::json& summary, const Ru
               << " closures tried, " << l["closures_accepted"] << " accepted, "
               << l["closures_kept"] << " edges kept by the graph, " << l["map_renders"]
               << " map renders\n";
+    if (l.contains("final_match")) {
+      const nlohmann::json& f = l["final_match"];
+      std::cout << "final map matching: " << f["matched"] << " nodes matched on the whole map, "
+                << f["joined"] << " joined the graph, nodes moved up to " << f["largest_shift_m"]
+                << " m\n";
+    }
     PrintOdometryModel(l);
   }
   std::cout << "wrote " << folder.directory() << "/{iterations.jsonl,trajectory.tum,map.pcd,"

@@ -36,6 +36,23 @@ TEST(OccupancyGrid, BeamMarksCrossedCellsMissedOnceAndItsEndCellHit) {
   EXPECT_EQ(grid.State(3, 0), CellState::kUnknown);    // p = 0.45: one miss is not enough
 }
 
+TEST(OccupancyGrid, AScanMovedAfterTheFactIsCastFromItsNewPostureOnly) {
+  OccupancyGridOptions options;
+  options.margin_cells = 0;
+  OccupancyGridBuilder moved(options), direct(options);
+  moved.AddScan(OneBeam(1.0), Pose2D(0.025, 0.025, 0.0));
+  moved.AddScan(OneBeam(0.5), Pose2D(0.025, 0.025, 0.0));
+  moved.MoveScan(1, Pose2D(0.025, 0.525, M_PI / 2.0));  // the second beam now points up
+  direct.AddScan(OneBeam(1.0), Pose2D(0.025, 0.025, 0.0));
+  direct.AddScan(OneBeam(0.5), Pose2D(0.025, 0.525, M_PI / 2.0));
+  const OccupancyGrid a = moved.Build(), b = direct.Build();
+  ASSERT_EQ(a.width, b.width);
+  ASSERT_EQ(a.height, b.height);
+  EXPECT_EQ(a.log_odds, b.log_odds);
+  EXPECT_EQ(a.height, 21u);  // from y = 0 up to the moved beam's end at 1.025 m
+  EXPECT_THROW(moved.MoveScan(2, Pose2D()), std::out_of_range);
+}
+
 TEST(OccupancyGrid, ACellOneBeamEndsInIsHitOnlyThoughAnotherBeamOfTheScanCrossesIt) {
   // Two beams a microradian apart along +x: one ends in cell 10, the other crosses it to cell 20.
   // Either beam order: cell 10 takes the hit alone, every other cell one vote.

@@ -335,6 +335,11 @@ void VisitLoopClosure(C& c, V& v) {
     "the session tracks against the nodes laid within this path (up to twice it), 0: all, m ...");
   v("loop_closure.tracking_min_nodes", l.tracking_min_nodes, Bounds{0, 1e6},
     "... and at least this many newest nodes");
+  v("loop_closure.final_match", l.final_match.enabled,
+    "at the end of a run the nodes are matched once more on the whole map rendered from the "
+    "solved graph, and the graph solved again with the validated matches in it");
+  v("loop_closure.final_match_spacing_m", l.final_match.spacing_m, Bounds{0, 1e6},
+    "... one node per this much path, m (0: every node)");
 }
 
 template <class C, class V>

@@ -117,6 +117,16 @@ Eigen::Matrix3d RotatedOutOf(const Eigen::Matrix3d& covariance, double yaw_rad) 
   return rotation * covariance * rotation.transpose();
 }
 
+Eigen::Matrix3d EdgeInformation(const std::optional<Eigen::Matrix3d>& covariance_world,
+                                double from_yaw_rad, double floor_m, double floor_rad) {
+  Eigen::Matrix3d covariance =
+      Eigen::Vector3d(floor_m * floor_m, floor_m * floor_m, floor_rad * floor_rad).asDiagonal();
+  if (covariance_world && covariance_world->allFinite())
+    covariance += RotatedOutOf(*covariance_world, -from_yaw_rad);
+  Eigen::Matrix3d information = covariance.inverse();
+  return 0.5 * (information + information.transpose());
+}
+
 void CompoundedPosture::Append(const Pose2D& step, const Eigen::Matrix3d& step_covariance) {
   const Pose2D after = T_start_end * step;
   Eigen::Matrix3d jacobian = Eigen::Matrix3d::Identity();

@@ -168,6 +168,17 @@ IterationRecord ProcessOne(ScanProcessor& session, const Iteration& iteration, R
 
 // A resumed run that did not get past its records has nothing new to write: the folder stays as
 // it was.
+// The grid's scans moved to the postures the session corrected after the run (loop closure), so
+// that map.pgm shows the map trajectory.tum and map.pcd show; a scan without a corrected posture
+// stays where the session kept it.
+void MoveToCorrectedPostures(const ScanProcessor& session, const std::vector<std::size_t>& records,
+                             OccupancyGridBuilder& grid) {
+  const std::vector<std::optional<Pose2D>> corrected = session.CorrectedPostures();
+  for (std::size_t k = 0; k < records.size(); ++k)
+    if (records[k] < corrected.size() && corrected[records[k]])
+      grid.MoveScan(k, session.mounting().LaserPose(*corrected[records[k]]));
+}
+
 void RequireReplayDone(const SessionRun& result, const RunFolder& run, bool stopped) {
   const std::size_t recorded = run.recorded().size();
   if (result.counts.iterations >= recorded) return;
@@ -193,6 +204,7 @@ SessionRun RunSession(IterationSource& source, const SessionFactory& make_sessio
   };
   auto stopped = [&] { return options.stop != nullptr && options.stop->load(); };
   if (options.occupancy_grid) result.grid.emplace(*options.occupancy_grid);
+  std::vector<std::size_t> grid_records;  // the record index of each scan the grid kept
   try {
     for (std::size_t skipped = 0; skipped < options.skip_scans && source.Next(iteration);)
       ++skipped;
@@ -201,9 +213,11 @@ SessionRun RunSession(IterationSource& source, const SessionFactory& make_sessio
       result.counts.replayed += result.counts.iterations < run.recorded().size();
       const IterationRecord record =
           ProcessOne(*result.session, iteration, run, result.counts.iterations);
-      if (result.grid && CastIntoGrid(record.validated, record.first))
+      if (result.grid && CastIntoGrid(record.validated, record.first)) {
         result.grid->AddScan(iteration.scan,
                              result.session->mounting().LaserPose(record.T_world_robot));
+        grid_records.push_back(record.index);
+      }
       result.counts.Add(record);
       if (options.progress && Clock::now() - last_progress > std::chrono::seconds(2)) {
         last_progress = Clock::now();
@@ -220,7 +234,10 @@ SessionRun RunSession(IterationSource& source, const SessionFactory& make_sessio
   }
   if (options.progress) std::fprintf(stderr, "\n");
   RequireReplayDone(result, run, stopped());
-  if (result.session) result.session->Finish();
+  if (result.session) {
+    result.session->Finish();
+    if (result.grid) MoveToCorrectedPostures(*result.session, grid_records, *result.grid);
+  }
   result.counts.interrupted = stopped();
   result.counts.wall_s = SecondsSince(start);
   result.counts.cpu_s = ProcessCpuSeconds() - cpu_start_s;
@@ -287,6 +304,13 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
                                {"map_renders", c.map_renders}};
     if (const OdometryModel* model = run.session->odometry_model())
       summary["loop_closure"]["odometry_model"] = OdometryModelSummary(*model, graph);
+    if (const std::optional<FinalMatchSummary> m = run.session->final_match()) {
+      summary["loop_closure"]["final_match"] = {{"matched", m->matched},
+                                                {"joined", m->joined},
+                                                {"solve_iterations", m->solve_iterations},
+                                                {"largest_shift_m", m->largest_shift_m}};
+      summary["final_match_wall_s"] = m->wall_s;  // a timing, beside the others
+    }
   }
   if (c.replayed > 0) summary["resumed_after_records"] = c.replayed;
   if (!c.failure.empty()) summary["failed"] = c.failure;

@@ -104,6 +104,10 @@ void OccupancyGridBuilder::AddScan(const LaserScan& scan, const Pose2D& T_world_
   scans_.push_back(std::move(kept));
 }
 
+void OccupancyGridBuilder::MoveScan(std::size_t index, const Pose2D& T_world_laser) {
+  scans_.at(index).T_world_laser = T_world_laser;
+}
+
 void OccupancyGridBuilder::EndPoints(const KeptScan& kept, std::vector<Eigen::Vector2d>& points) {
   points.clear();
   const BearingCosines& bearings = BearingCosinesOf(kept.scan.layout);

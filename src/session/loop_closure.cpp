@@ -18,18 +18,6 @@ double Distance(const Pose2D& a, const Pose2D& b) {
   return (a.Translation() - b.Translation()).norm();
 }
 
-// The information of an edge from a node at heading `from_yaw_rad`: the refinement's covariance
-// (when it has one) rotated into that node's frame, plus the floors.
-Eigen::Matrix3d EdgeInformation(const std::optional<Eigen::Matrix3d>& covariance_world,
-                                double from_yaw_rad, double floor_m, double floor_rad) {
-  Eigen::Matrix3d covariance =
-      Eigen::Vector3d(floor_m * floor_m, floor_m * floor_m, floor_rad * floor_rad).asDiagonal();
-  if (covariance_world && covariance_world->allFinite())
-    covariance += RotatedOutOf(*covariance_world, -from_yaw_rad);
-  Eigen::Matrix3d information = covariance.inverse();
-  return 0.5 * (information + information.transpose());
-}
-
 // The odometry holds a motion's heading when the model says it knows it at least as well as a
 // matched step knows its own (in the graph's units). Only then does its edge join the graph: an
 // odometry weaker than the matching in heading would add little, and what its model does not
@@ -110,6 +98,7 @@ void LoopClosureOptions::Validate() const {
   require(tracking_path_m >= 0.0 && tracking_min_nodes >= 0,
           "tracking_path_m and tracking_min_nodes must be >= 0");
   odometry.Validate();
+  final_match.Validate();
 }
 
 LoopCloser::LoopCloser(const LoopClosureOptions& options, const LaserMounting& mounting)
@@ -410,6 +399,18 @@ bool LoopCloser::Finish() {
   double largest_shift_m = 0.0;
   SolveGraph(largest_shift_m, 0);
   return largest_shift_m > options_.render_min_shift_m;
+}
+
+FinalMatchSummary LoopCloser::MatchOnFinalMap(const MapView& map,
+                                              const LocalisationOptions& localisation) {
+  std::vector<NodeScan> scans;
+  scans.reserve(nodes_.size());
+  for (std::size_t i = 0; i < nodes_.size(); ++i)
+    scans.push_back({i, &nodes_[i].scan, nodes_[i].path_m});
+  local_map_.reset();  // the solve moves the nodes it was rendered from
+  return MatchNodesOnFinalMap(map, scans, mounting_, localisation, options_.final_match,
+                              options_.sigma_floor_m, options_.sigma_floor_rad, options_.graph,
+                              graph_);
 }
 
 std::optional<ChainMisses> LoopCloser::Chains(std::size_t a, std::size_t b,

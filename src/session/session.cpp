@@ -396,12 +396,30 @@ void Session::RenderTracked() {
 void Session::Finish() {
   if (options_.loop_closure.enabled) {
     const bool moved = loop_.Finish();
-    if (Tracking() || moved || options_.extension.carve_with_earlier_scans)
+    if (options_.loop_closure.final_match.enabled)
+      MatchOnFinalMap();
+    else if (Tracking() || moved || options_.extension.carve_with_earlier_scans)
       point_map_ = loop_.Render(point_map_.options(), options_.extension, 0, true);
   }
   if (!point_map_.empty())
     map_signature_ = MeasureMapSignature(View(), laid_, CorrectedPostures(), mounting_,
                                          localisation_, options_.signature);
+}
+
+// The final map matching: the nodes matched on the map rendered from every node, with the rules'
+// E_max the laser signature learned; then the map kept is rendered from the postures it left.
+// (The map matched on is carved as the map kept is: without the carving, the ghosts of moved
+// doors and passers-by cost Fr079 0.0396 -> 0.0405 m and Intel's worst relation 0.15 -> 0.30 m.)
+void Session::MatchOnFinalMap() {
+  point_map_ = loop_.Render(point_map_.options(), options_.extension, 0, true);
+  if (point_map_.empty()) return;
+  LocalisationOptions options = localisation_;
+  if (options_.learned_max_expect_value)
+    options.validation.max_expect_value_m =
+        signature_.ExpectValueBound(localisation_.validation.max_expect_value_m);
+  final_match_ = loop_.MatchOnFinalMap(View(), options);
+  if (final_match_->largest_shift_m > 0.0)
+    point_map_ = loop_.Render(point_map_.options(), options_.extension, 0, true);
 }
 
 std::vector<std::optional<Pose2D>> Session::CorrectedPostures() const {

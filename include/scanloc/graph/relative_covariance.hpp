@@ -23,6 +23,12 @@ std::optional<Eigen::Matrix3d> RelativeCovariance(const PoseGraph& graph, std::s
 // A covariance given in a frame at heading `yaw_rad`, seen in the frame that frame lies in.
 Eigen::Matrix3d RotatedOutOf(const Eigen::Matrix3d& covariance, double yaw_rad);
 
+// The information of an edge from a node at heading `from_yaw_rad`, measured with a covariance
+// given in the world (a refinement's, when it has one) rotated into that node's frame, plus the
+// floors' variances.
+Eigen::Matrix3d EdgeInformation(const std::optional<Eigen::Matrix3d>& covariance_world,
+                                double from_yaw_rad, double floor_m, double floor_rad);
+
 // A posture compounded from relative steps, T_start_end, with its covariance (x m, y m, yaw rad,
 // in the start's frame) to first order: Σ ← J Σ Jᵀ + R Σ_step Rᵀ, J carrying the heading error so
 // far over the step's displacement, R the end's heading.

@@ -24,7 +24,7 @@ struct SessionRunOptions {
   bool progress = true;                     // a progress line on stderr every 2 s
   const std::atomic<bool>* stop = nullptr;  // when set (Ctrl-C), the loop ends early
   // When set, the scans CastIntoGrid picks (io/run_grid.hpp) are kept for an occupancy grid, at
-  // the postures the session kept.
+  // the postures the session kept, corrected after the run as trajectory.tum is (loop closure).
   std::optional<OccupancyGridOptions> occupancy_grid;
   std::size_t skip_scans = 0;  // start after this many scans of the source
 };

@@ -60,6 +60,9 @@ class OccupancyGridBuilder {
   // their end points.
   void AddScan(const LaserScan& scan, const Pose2D& T_world_laser);
   std::size_t scans() const { return scans_.size(); }
+  // The `index`-th scan kept (in the order added) lies at `T_world_laser` instead: a posture
+  // corrected after the fact (loop closure). Throws std::out_of_range for an index not kept.
+  void MoveScan(std::size_t index, const Pose2D& T_world_laser);
   // Casts every ray, scan by scan (misses first, then the scan's hits). An empty builder gives an
   // empty grid (width = height = 0).
   OccupancyGrid Build() const;

@@ -18,6 +18,7 @@
 #include "scanloc/graph/odometry_model.hpp"
 #include "scanloc/graph/pose_graph.hpp"
 #include "scanloc/maps/point_map.hpp"
+#include "scanloc/session/final_map_matching.hpp"
 #include "scanloc/session/localisation.hpp"
 #include "scanloc/session/map_extension.hpp"
 #include "scanloc/session/wide_search.hpp"
@@ -91,6 +92,8 @@ struct LoopClosureOptions {
   // over the loop, instead of the tracker snapping onto their walls.
   double tracking_path_m = 10.0;
   int tracking_min_nodes = 0;
+  // At the end of the run, the nodes matched once more on the whole map (final_map_matching.hpp).
+  FinalMatchOptions final_match;
   // Throws std::invalid_argument naming the first option out of its domain.
   void Validate() const;
 };
@@ -160,6 +163,9 @@ class LoopCloser {
   // Solves the graph when closures joined it unsolved; true when that moved a node more than
   // render_min_shift_m (the map is then worth rendering again).
   bool Finish();
+  // The final map matching (final_map_matching.hpp) of the nodes on `map`, the whole map rendered
+  // from them after Finish: the nodes move to the graph solved with the matches.
+  FinalMatchSummary MatchOnFinalMap(const MapView& map, const LocalisationOptions& localisation);
 
   // A saved map the session started on: every render starts from its live points, restored as
   // they were (the nodes' scans then carve and extend it as the session did). None by default.

@@ -8,6 +8,7 @@
 
 #include "scanloc/maps/point_map.hpp"
 #include "scanloc/session/correction_gate.hpp"
+#include "scanloc/session/final_map_matching.hpp"
 #include "scanloc/session/iteration.hpp"
 #include "scanloc/session/localisation.hpp"
 #include "scanloc/session/loop_closure.hpp"
@@ -122,6 +123,8 @@ class ScanProcessor {
   virtual const PoseGraph* pose_graph() const { return nullptr; }
   // The odometry model its loop closures taught, when the processor keeps a pose graph.
   virtual const OdometryModel* odometry_model() const { return nullptr; }
+  // What the final map matching did (final_map_matching.hpp), when the processor ran it.
+  virtual std::optional<FinalMatchSummary> final_match() const { return {}; }
 };
 
 }  // namespace scanloc

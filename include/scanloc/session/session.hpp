@@ -157,6 +157,8 @@ class Session : public ScanProcessor {
   const PoseGraph* pose_graph() const override;
   const OdometryModel* odometry_model() const override;
   std::optional<MapSignature> map_signature() const override { return map_signature_; }
+  // What the final map matching did (none before Finish, or with it off).
+  std::optional<FinalMatchSummary> final_match() const override { return final_match_; }
 
  private:
   // One iteration, localised, or replayed from `recorded` when it is given.
@@ -187,6 +189,7 @@ class Session : public ScanProcessor {
   // With loop_closure.tracking_path_m: the session tracks against the newest nodes only.
   bool Tracking() const;
   void RenderTracked();
+  void MatchOnFinalMap();
 
   SessionOptions options_;
   LocalisationOptions localisation_;
@@ -197,6 +200,7 @@ class Session : public ScanProcessor {
   LaserSignature signature_;
   LaidScanSample laid_;  // confirmed scans laid on the map, for the map's own signature
   std::optional<MapSignature> map_signature_;
+  std::optional<FinalMatchSummary> final_match_;
   DriftTracker drift_;
   CorrectionGate gate_;
   LoopCloser loop_;
