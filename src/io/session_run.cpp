@@ -166,8 +166,6 @@ IterationRecord ProcessOne(ScanProcessor& session, const Iteration& iteration, R
   }
 }
 
-// A resumed run that did not get past its records has nothing new to write: the folder stays as
-// it was.
 // The grid's scans moved to the postures the session corrected after the run (loop closure), so
 // that map.pgm shows the map trajectory.tum and map.pcd show; a scan without a corrected posture
 // stays where the session kept it.
@@ -179,6 +177,8 @@ void MoveToCorrectedPostures(const ScanProcessor& session, const std::vector<std
       grid.MoveScan(k, session.mounting().LaserPose(*corrected[records[k]]));
 }
 
+// A resumed run that did not get past its records has nothing new to write: the folder stays as
+// it was.
 void RequireReplayDone(const SessionRun& result, const RunFolder& run, bool stopped) {
   const std::size_t recorded = run.recorded().size();
   if (result.counts.iterations >= recorded) return;

@@ -291,12 +291,19 @@ bool Session::TakesPrediction(const IterationRecord& record, const RankedCandida
 }
 
 LocalisationOptions Session::BoundedOptions(IterationRecord& record) const {
-  LocalisationOptions options = localisation_;
+  const LocalisationOptions options = SignatureBoundedOptions();
   record.signature_expect_value_m =
       signature_.ExpectValueBound(localisation_.validation.max_expect_value_m);
-  if (options_.learned_max_expect_value)
-    options.validation.max_expect_value_m = record.signature_expect_value_m;
   record.max_expect_value_m = options.validation.max_expect_value_m;
+  return options;
+}
+
+// The localisation's options, rule 2's E_max the laser signature's bound when it is to be.
+LocalisationOptions Session::SignatureBoundedOptions() const {
+  LocalisationOptions options = localisation_;
+  if (options_.learned_max_expect_value)
+    options.validation.max_expect_value_m =
+        signature_.ExpectValueBound(localisation_.validation.max_expect_value_m);
   return options;
 }
 
@@ -413,11 +420,7 @@ void Session::Finish() {
 void Session::MatchOnFinalMap() {
   point_map_ = loop_.Render(point_map_.options(), options_.extension, 0, true);
   if (point_map_.empty()) return;
-  LocalisationOptions options = localisation_;
-  if (options_.learned_max_expect_value)
-    options.validation.max_expect_value_m =
-        signature_.ExpectValueBound(localisation_.validation.max_expect_value_m);
-  final_match_ = loop_.MatchOnFinalMap(View(), options);
+  final_match_ = loop_.MatchOnFinalMap(View(), SignatureBoundedOptions());
   if (final_match_->largest_shift_m > 0.0)
     point_map_ = loop_.Render(point_map_.options(), options_.extension, 0, true);
 }

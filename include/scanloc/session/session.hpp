@@ -178,6 +178,7 @@ class Session : public ScanProcessor {
   bool TakesPrediction(const IterationRecord& record, const RankedCandidate& kept) const;
   // Rule 2's E_max in force for the next localisation and the signature's bound, into `record`.
   LocalisationOptions BoundedOptions(IterationRecord& record) const;
+  LocalisationOptions SignatureBoundedOptions() const;
   // The odometry's prediction as the refinement's prior, when motion_prior is on.
   void AddMotionPrior(LocalisationOptions& options, const Pose2D& prediction,
                       const Iteration& iteration) const;
