@@ -52,10 +52,12 @@ Drive MakeDrive(double heading_rad2_per_m, double position_m2_per_m, double jitt
   return drive;
 }
 
-// The misses of steps [a, b) against the truth's relative posture plus `closure_noise` (a closure)
-// or, without it, of the odometry chain against the matched one (a stretch).
+// The misses of steps [a, b) against the truth's relative posture plus `closure_noise` (a closure,
+// its own covariance stated from `closure_noise_sigma`) or, without it, of the odometry chain
+// against the matched one (a stretch).
 ChainMisses Misses(const Drive& drive, const OdometryModel& model, int a, int b,
-                   const std::optional<Eigen::Vector3d>& closure_noise) {
+                   const std::optional<Eigen::Vector3d>& closure_noise,
+                   const Eigen::Vector3d& closure_noise_sigma = Eigen::Vector3d::Zero()) {
   CompoundedPosture truth, matched, position, heading, floor;
   for (int k = a; k < b; ++k) {
     truth.Append(drive.truth_steps[k], Eigen::Matrix3d::Zero());
@@ -81,21 +83,27 @@ ChainMisses Misses(const Drive& drive, const OdometryModel& model, int a, int b,
   m.odometry_per_position = position.covariance;
   m.odometry_per_heading = heading.covariance;
   m.odometry_floor = floor.covariance;
+  // A closure's own covariance as its refinement states it: understated as a matched step's.
+  if (closure_noise)
+    m.closure_covariance = closure_noise_sigma.cwiseAbs2().asDiagonal() * (1.0 / kMatchedScale);
   return m;
 }
 
-// Closures of 20–60 steps every 30 steps (2 cm, 5 mrad of their own error, seed 4), stretches of
-// 3, 6, 12 and 24 steps (2.7–21.6 m) along the whole drive, as a session cuts them.
-OdometryModel Learned(const Drive& drive) {
-  OdometryModel model{OdometryModelOptions{}};
+// Closures of 20–60 steps every `every` steps from step 60 (2 cm and `closure_rad` of their own
+// error, seed 4), stretches of 3, 6, 12 and 24 steps (2.7–21.6 m) along the whole drive, as a
+// session cuts them.
+OdometryModel Learned(const Drive& drive, const OdometryModelOptions& options = {},
+                      double closure_rad = 0.005, int every = 30) {
+  OdometryModel model{options};
   std::mt19937 random(4);
   std::normal_distribution<double> unit(0.0, 1.0);
   std::vector<ChainMisses> closures, stretches;
-  for (int b = 60; b <= 600; b += 30) {
+  for (int b = 60; b <= 600; b += every) {
     const int a = b - 20 - (b / 30 % 3) * 20;
-    closures.push_back(
-        Misses(drive, model, a, b,
-               Eigen::Vector3d(0.02 * unit(random), 0.02 * unit(random), 0.005 * unit(random))));
+    closures.push_back(Misses(
+        drive, model, a, b,
+        Eigen::Vector3d(0.02 * unit(random), 0.02 * unit(random), closure_rad * unit(random)),
+        Eigen::Vector3d(0.02, 0.02, closure_rad)));
   }
   for (int length = 3; length <= 24; length *= 2)
     for (int a = 0; a + length <= 600; a += length)
@@ -133,6 +141,30 @@ TEST(OdometryModel, APerfectOdometrysPositionIsNotTakenForTheMatchingsJitter) {
   EXPECT_LT(model.heading_rad2_per_m(), 1e-6);
 }
 
+// Closures erring by 20 mrad of their own in heading (the Radish closures err by 1–36 mrad)
+// beside a matched chain whose stretches miss a perfect odometry: zero heading noise and a little
+// of it explain the misses alike, and the fit alone settles on a little (6.5e-7 rad²/m here).
+// The likelihood-ratio test leaves the odometry as it came: perfect.
+TEST(OdometryModel, APerfectOdometryIsNotTakenForNoisyByClosuresThatErrThemselves) {
+  const Drive drive = MakeDrive(0.0, 0.0);
+  OdometryModelOptions untested;
+  untested.heading_test_chi2 = 0.0;
+  EXPECT_GT(Learned(drive, untested, 0.02).heading_rad2_per_m(), 1e-7);
+  EXPECT_EQ(Learned(drive, {}, 0.02).heading_rad2_per_m(), 0.0);
+}
+
+// What five closures erring by 20 mrad can tell: a drifting odometry of 1e-4 rad²/m (the Radish
+// noisy logs' are 3.4e-4–1.9e-3) from a perfect one, not one of 1e-5, which is trusted as perfect
+// until more closures disprove it (19 of them find it). Without λ_r the closures may err only as
+// their stated covariance, understated as a matched step's, allows.
+TEST(OdometryModel, FiveClosuresTellAnOdometryOf1e4FromPerfectButNotOneOf1e5) {
+  const double noisy = 1e-4;
+  EXPECT_NEAR(Learned(MakeDrive(noisy, 4 * noisy), {}, 0.02, 120).heading_rad2_per_m(), noisy,
+              0.5 * noisy);
+  EXPECT_EQ(Learned(MakeDrive(1e-5, 4e-5), {}, 0.02, 120).heading_rad2_per_m(), 0.0);
+  EXPECT_GT(Learned(MakeDrive(1e-5, 4e-5), {}, 0.02, 30).heading_rad2_per_m(), 0.0);
+}
+
 TEST(OdometryModel, AStepsShapeGrowsWithItsLengthAndTurnAndTheOptionsAreChecked) {
   const OdometryModel model{OdometryModelOptions{}};
   const OdometryStepShape shape = model.Shape(Pose2D(0.6, 0.8, -0.5));
@@ -145,6 +177,9 @@ TEST(OdometryModel, AStepsShapeGrowsWithItsLengthAndTurnAndTheOptionsAreChecked)
   EXPECT_THROW(OdometryModel{bad}, std::invalid_argument);
   bad = {};
   bad.stretch_m = -1.0;
+  EXPECT_THROW(OdometryModel{bad}, std::invalid_argument);
+  bad = {};
+  bad.heading_test_chi2 = -1.0;
   EXPECT_THROW(OdometryModel{bad}, std::invalid_argument);
 }
 

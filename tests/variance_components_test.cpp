@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -105,6 +106,42 @@ TEST(VarianceComponents, TwoScalesAlwaysSeenTogetherHaveAVarianceFarBeyondTheirS
   EXPECT_GT(covariance(0, 0), 1e6 * 1e-4 * 1e-4);
   EXPECT_GT(covariance(1, 1), 1e6 * 1e-4 * 1e-4);
   EXPECT_LT(covariance(2, 2), 1e-4 * 1e-4);  // the third is still seen on its own
+}
+
+// Twice the log-likelihood that fitting source 0 gains over the other two fitted alone.
+double LikelihoodRatioOfSourceZero(const std::vector<VarianceObservation>& observations) {
+  std::vector<VarianceObservation> without = observations;
+  for (VarianceObservation& o : without) o.design(0) = 0.0;
+  return 2.0 * (VarianceComponentsLogLikelihood(observations, FitVarianceComponents(observations)) -
+                VarianceComponentsLogLikelihood(without, FitVarianceComponents(without)));
+}
+
+// A perfect source gains less than χ²₁'s 99 % quantile (6.63) with 100 pairs of each kind (0.97;
+// 0–0.97 over seeds 5–9); one with twice the next source's variance gains far more with 300 (45;
+// 30–74 over those seeds). A source a quarter of the next one's, 2.5e-5, is not told from zero
+// with 100 (0–2.6): the test asks for evidence, and few misses give little.
+TEST(VarianceComponents, APerfectSourceGainsLessThanChi2sNinetyNinePercentAndANoisyOneFarMore) {
+  EXPECT_LT(LikelihoodRatioOfSourceZero(PairwiseDifferences({0.0, 1e-4, 3e-4}, 100)), 6.63);
+  EXPECT_GT(LikelihoodRatioOfSourceZero(PairwiseDifferences({2e-4, 1e-4, 3e-4}, 300)), 20.0);
+}
+
+TEST(VarianceComponents, TheLogLikelihoodPeaksNearTheScalesThatMadeTheMisses) {
+  const Eigen::Vector3d sigma2(2e-4, 1e-4, 3e-4);
+  const std::vector<VarianceObservation> observations = PairwiseDifferences(sigma2, 2000);
+  const double at_truth = VarianceComponentsLogLikelihood(observations, sigma2);
+  EXPECT_GT(at_truth, VarianceComponentsLogLikelihood(observations, 1.3 * sigma2));
+  EXPECT_GT(at_truth, VarianceComponentsLogLikelihood(observations, 0.7 * sigma2));
+  EXPECT_GT(at_truth,
+            VarianceComponentsLogLikelihood(observations, Eigen::Vector3d(0.0, 1e-4, 3e-4)));
+}
+
+TEST(VarianceComponents, AWildMissCostsTheLogLikelihoodNoMoreThanItsCap) {
+  const VarianceObservation wild{1e6, 0.0, Eigen::Vector2d(1.0, 0.0)};
+  const double expected = -0.5 * (std::log(2.0) + 10.828);
+  EXPECT_NEAR(VarianceComponentsLogLikelihood({wild}, Eigen::Vector2d(2.0, 5.0)), expected, 1e-12);
+  const VarianceObservation two{4.0, 1.0, Eigen::Vector2d(1.0, 0.0), 2.0};  // v = 3, k = 2
+  EXPECT_NEAR(VarianceComponentsLogLikelihood({two}, Eigen::Vector2d(2.0, 5.0)),
+              -(std::log(3.0) + 4.0 / 3.0), 1e-12);
 }
 
 }  // namespace

@@ -27,12 +27,12 @@ double Median(std::vector<double> values) {
 
 void OdometryModelOptions::Validate() const {
   if (!(turn_weight_m_per_rad >= 0.0 && floor_m > 0.0 && floor_rad > 0.0 && stretch_m > 0.0 &&
-        position_per_heading_m2 >= 0.0) ||
+        position_per_heading_m2 >= 0.0 && heading_test_chi2 >= 0.0) ||
       !std::isfinite(turn_weight_m_per_rad + floor_m + floor_rad + stretch_m +
-                     position_per_heading_m2))
+                     position_per_heading_m2 + heading_test_chi2))
     throw std::invalid_argument(
-        "OdometryModelOptions: turn_weight_m_per_rad and position_per_heading_m2 must be >= 0, "
-        "the floors and stretch_m positive");
+        "OdometryModelOptions: turn_weight_m_per_rad, position_per_heading_m2 and "
+        "heading_test_chi2 must be >= 0, the floors and stretch_m positive");
 }
 
 OdometryModel::OdometryModel(const OdometryModelOptions& options) : options_(options) {
@@ -63,9 +63,14 @@ void OdometryModel::Learn(std::vector<ChainMisses> closures, std::vector<ChainMi
 // against the matched one (λ_r and λ_s). A perfect odometry's closures miss by their own error,
 // which no longer passes for the odometry's. (A matched scan's jitter in heading, a mrad, is
 // small beside what the chains turn apart over a stretch: a component of its own for it was
-// measured and not kept.)
+// measured and not kept.) λ_r is zero unless the misses reject zero: twice the log-likelihood of
+// this fit, against a fit without λ_r where each closure errs only as its own stated covariance,
+// understated as a matched step's (λ_s), allows, must exceed test_chi2. With few closures a perfect
+// odometry's misses (the closures' own 1–36 mrad on the Radish logs) fit λ_r or λ_c alike, and the
+// fit's iterations settle on either; a free λ_c would pass a drifting odometry's misses off as the
+// closures' own error just as well.
 double HeadingScale(const std::vector<ChainMisses>& closures,
-                    const std::vector<ChainMisses>& stretches) {
+                    const std::vector<ChainMisses>& stretches, double test_chi2) {
   std::vector<VarianceObservation> observations;
   for (const ChainMisses& m : closures) {
     observations.push_back({m.odometry_miss(2) * m.odometry_miss(2), m.odometry_floor(2, 2),
@@ -78,7 +83,28 @@ double HeadingScale(const std::vector<ChainMisses>& closures,
         {m.odometry_miss(2) * m.odometry_miss(2), m.odometry_floor(2, 2),
          Eigen::Vector3d(m.odometry_per_heading(2, 2), m.matched_covariance(2, 2), 0.0)});
   const Eigen::VectorXd x = FitVarianceComponents(observations);
-  return x(0);
+  if (!(x(0) > 0.0) || !(test_chi2 > 0.0)) return x(0);
+  // The test: each closure errs only as its own covariance says, understated as a matched step's
+  // (λ_s), with λ_r and without it (no free variance of its own, to pass an odometry's drift off
+  // as the closures' error).
+  std::vector<VarianceObservation> with;
+  for (const ChainMisses& m : closures) {
+    const double own = m.closure_covariance(2, 2);
+    with.push_back({m.odometry_miss(2) * m.odometry_miss(2), m.odometry_floor(2, 2),
+                    Eigen::Vector3d(m.odometry_per_heading(2, 2), own, 0.0)});
+    with.push_back({m.matched_miss(2) * m.matched_miss(2), 0.0,
+                    Eigen::Vector3d(0.0, m.matched_covariance(2, 2) + own, 0.0)});
+  }
+  for (const ChainMisses& m : stretches)
+    with.push_back(
+        {m.odometry_miss(2) * m.odometry_miss(2), m.odometry_floor(2, 2),
+         Eigen::Vector3d(m.odometry_per_heading(2, 2), m.matched_covariance(2, 2), 0.0)});
+  std::vector<VarianceObservation> without = with;
+  for (VarianceObservation& o : without) o.design(0) = 0.0;
+  const double statistic =
+      2.0 * (VarianceComponentsLogLikelihood(with, FitVarianceComponents(with)) -
+             VarianceComponentsLogLikelihood(without, FitVarianceComponents(without)));
+  return statistic > test_chi2 ? x(0) : 0.0;
 }
 
 // A position miss: its squared length, expected to be the trace of its covariance.
@@ -94,11 +120,11 @@ double PositionScaleOnStretches(const std::vector<ChainMisses>& stretches, doubl
                                 double matched_scale) {
   std::vector<VarianceObservation> observations;
   for (const ChainMisses& m : stretches)
-    observations.push_back(PositionMiss(
-        m.odometry_miss,
-        heading_scale * m.odometry_per_heading + m.odometry_floor +
-            matched_scale * m.matched_covariance,
-        Eigen::Vector2d(m.odometry_per_position.topLeftCorner<2, 2>().trace(), 2.0)));
+    observations.push_back(
+        PositionMiss(m.odometry_miss,
+                     heading_scale * m.odometry_per_heading + m.odometry_floor +
+                         matched_scale * m.matched_covariance,
+                     Eigen::Vector2d(m.odometry_per_position.topLeftCorner<2, 2>().trace(), 2.0)));
   return FitVarianceComponents(observations)(0);
 }
 
@@ -137,7 +163,7 @@ void OdometryModel::Fit() {
     values[i] = m.matched_miss.dot(m.matched_covariance.inverse() * m.matched_miss);
   }
   matched_ = std::clamp(Median(values) / kChi2Median3, 1e-3, 1e6);
-  heading_ = HeadingScale(misses_, stretches_);
+  heading_ = HeadingScale(misses_, stretches_, options_.heading_test_chi2);
   position_ = stretches_.empty()
                   ? 0.0
                   : std::min(PositionScaleOnStretches(stretches_, heading_, matched_),

@@ -53,19 +53,23 @@ Eigen::VectorXd NonNegativeLeastSquares(const std::vector<VarianceObservation>& 
   return best;
 }
 
+// The squared misses' mean: a variance no scale reaches yet stays a tiny fraction of it, not 0.
+double MeanSquaredMiss(const std::vector<VarianceObservation>& observations) {
+  double mean = 0.0;
+  for (const VarianceObservation& o : observations) mean += o.squared_miss;
+  return std::max(mean / static_cast<double>(observations.size()), 1e-300);
+}
+
 }  // namespace
 
 Eigen::VectorXd FitVarianceComponents(const std::vector<VarianceObservation>& observations) {
   if (observations.empty()) return {};
-  double mean = 0.0;
-  for (const VarianceObservation& o : observations) mean += o.squared_miss;
-  mean = std::max(mean / static_cast<double>(observations.size()), 1e-300);
+  const double mean = MeanSquaredMiss(observations);
   std::vector<double> weights(observations.size(), 1.0 / (mean * mean));
   Eigen::VectorXd scales = NonNegativeLeastSquares(observations, weights);
   for (int iteration = 1; iteration < kIterations; ++iteration) {
     for (std::size_t k = 0; k < observations.size(); ++k) {
       const VarianceObservation& o = observations[k];
-      // A variance no scale reaches yet stays a tiny fraction of the misses' mean, not 0.
       const double variance = std::max(o.known + o.design.dot(scales), 1e-9 * mean);
       const double excess = std::abs(o.squared_miss / variance - 1.0);
       weights[k] = std::min(1.0, kChi2Quantile999 / std::max(excess, 1e-12)) *
@@ -77,6 +81,19 @@ Eigen::VectorXd FitVarianceComponents(const std::vector<VarianceObservation>& ob
     if (settled) break;
   }
   return scales;
+}
+
+double VarianceComponentsLogLikelihood(const std::vector<VarianceObservation>& observations,
+                                       const Eigen::VectorXd& scales) {
+  if (observations.empty()) return 0.0;
+  const double mean = MeanSquaredMiss(observations);
+  double log_likelihood = 0.0;
+  for (const VarianceObservation& o : observations) {
+    const double variance = std::max(o.known + o.design.dot(scales), 1e-9 * mean);
+    const double whitened = std::min(o.squared_miss / variance, kChi2Quantile999);
+    log_likelihood -= 0.5 * o.degrees_of_freedom * (std::log(variance) + whitened);
+  }
+  return log_likelihood;
 }
 
 Eigen::MatrixXd VarianceComponentsCovariance(const std::vector<VarianceObservation>& observations,

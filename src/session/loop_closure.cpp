@@ -449,6 +449,8 @@ void LoopCloser::LearnOdometry(const PoseGraphEdge& closure) {
                                 : Chains(closure.to, closure.from, closure.T_from_to.Inverse());
   if (!misses) return;  // a node between them has no odometry
   taught_.push_back(*misses);
+  const Eigen::Matrix3d covariance = closure.information.inverse();
+  taught_.back().closure_covariance = 0.5 * (covariance + covariance.transpose());
   ExtendStretches();
   const std::size_t first = taught_.size() - std::min(taught_.size(), kMaxTaught);
   std::vector<ChainMisses> stretches;

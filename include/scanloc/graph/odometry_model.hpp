@@ -19,7 +19,10 @@
 //   of freedom.
 // - λ_r (rad²/m): in heading, from three sources compared two by two (the closures against both
 //   chains, the stretches below the odometry chain against the matched one), each contributing a
-//   variance of its own (the closure's alike for every closure): variance_components.hpp.
+//   variance of its own (the closure's alike for every closure): variance_components.hpp. Zero
+//   unless the misses reject zero (heading_test_chi2): with few closures the misses of a perfect
+//   odometry, each the closure's own error, can be fitted either way. Without λ_r, a closure errs
+//   only as its own covariance says, understated as a matched step's (λ_s).
 // - λ_t (m²/m): the smaller of two estimates, and at least position_per_heading_m2·λ_r.
 //   - On the stretches alone: the odometry chain against the matched chain over stretches of
 //     stretch_m and of twice, four and eight times that, λ_t beside λ_j, the matching's jitter
@@ -59,6 +62,12 @@ struct OdometryModelOptions {
   // 0.5 m track. Where the stretches' position misses are all the heading's doing, this keeps a
   // noisy odometry's position from passing for exact.
   double position_per_heading_m2 = 0.0625;
+  // The odometry's heading noise is taken as zero unless the misses reject zero: twice the
+  // log-likelihood of the fit with λ_r, against a fit without it in which each closure errs only
+  // as its stated covariance (understated as a matched step's) allows, must exceed this quantile
+  // of χ² with one degree of freedom (6.635: 99 %). An odometry is trusted until the closures and
+  // stretches disprove it; 0 takes the fit as it comes.
+  double heading_test_chi2 = 6.635;
   void Validate() const;
 };
 
@@ -75,6 +84,7 @@ struct ChainMisses {
   Eigen::Matrix3d odometry_per_position = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d odometry_per_heading = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d odometry_floor = Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d closure_covariance = Eigen::Matrix3d::Zero();  // the closure's own; 0: a stretch
 };
 
 // One odometry step's covariance split by what it scales with (the sum is λ_t·position +

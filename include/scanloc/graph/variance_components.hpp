@@ -26,6 +26,14 @@ struct VarianceObservation {
 // observation needs; empty without observations.
 Eigen::VectorXd FitVarianceComponents(const std::vector<VarianceObservation>& observations);
 
+// The log-likelihood of the squared misses under `scales`, up to a constant: each miss's squared
+// length a multiple v of χ² with its degrees of freedom k contributes −k/2·(ln v + miss²/v), the
+// whitened miss²/v capped at 10.83 (χ²₁'s 99.9 % quantile, where the fit starts to bound a miss's
+// pull), so that one wild miss cannot decide a comparison. Twice the difference between two fits,
+// one with a scale held at zero, is the likelihood-ratio statistic of that scale (χ²₁ under zero).
+double VarianceComponentsLogLikelihood(const std::vector<VarianceObservation>& observations,
+                                       const Eigen::VectorXd& scales);
+
 // The covariance of the scales at `scales`: the inverse of their Fisher information under the
 // observations. A scale the observations cannot tell from the others (its shape a combination of
 // theirs) has a variance that is infinite, or nearly: what the fit chose for it is not known.
