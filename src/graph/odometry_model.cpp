@@ -86,19 +86,14 @@ double HeadingScale(const std::vector<ChainMisses>& closures,
   if (!(x(0) > 0.0) || !(test_chi2 > 0.0)) return x(0);
   // The test: each closure errs only as its own covariance says, understated as a matched step's
   // (λ_s), with λ_r and without it (no free variance of its own, to pass an odometry's drift off
-  // as the closures' error).
-  std::vector<VarianceObservation> with;
-  for (const ChainMisses& m : closures) {
+  // as the closures' error). The closures' two misses each come first, in their order.
+  std::vector<VarianceObservation> with = observations;
+  for (std::size_t i = 0; i < closures.size(); ++i) {
+    const ChainMisses& m = closures[i];
     const double own = m.closure_covariance(2, 2);
-    with.push_back({m.odometry_miss(2) * m.odometry_miss(2), m.odometry_floor(2, 2),
-                    Eigen::Vector3d(m.odometry_per_heading(2, 2), own, 0.0)});
-    with.push_back({m.matched_miss(2) * m.matched_miss(2), 0.0,
-                    Eigen::Vector3d(0.0, m.matched_covariance(2, 2) + own, 0.0)});
+    with[2 * i].design = Eigen::Vector3d(m.odometry_per_heading(2, 2), own, 0.0);
+    with[2 * i + 1].design = Eigen::Vector3d(0.0, m.matched_covariance(2, 2) + own, 0.0);
   }
-  for (const ChainMisses& m : stretches)
-    with.push_back(
-        {m.odometry_miss(2) * m.odometry_miss(2), m.odometry_floor(2, 2),
-         Eigen::Vector3d(m.odometry_per_heading(2, 2), m.matched_covariance(2, 2), 0.0)});
   std::vector<VarianceObservation> without = with;
   for (VarianceObservation& o : without) o.design(0) = 0.0;
   const double statistic =
