@@ -55,6 +55,17 @@ void PrintWarnings(const nlohmann::json& summary) {
       std::cout << " " << type << " " << count.get<std::size_t>();
     std::cout << "\n";
   }
+  const std::size_t without = summary["localised_without_odometry"].get<std::size_t>();
+  if (without > 0)
+    std::cout << "odometry: none for " << without << " localised scans; the map was searched for "
+              << summary["motion_searches"].get<std::size_t>()
+              << " of them around the last posture, over the motion seen lately\n";
+  const std::size_t frozen = summary["odometry_frozen_scans"].get<std::size_t>();
+  if (frozen > 0)
+    std::cerr << "warning: the log's odometry had not moved since the first scan while the scans "
+                 "did: "
+              << frozen
+              << " scans were localised without it (are the log's odometry fields filled in?)\n";
   const std::size_t reversed = summary["odometry_reversed_increments"].get<std::size_t>();
   if (reversed > 0)
     std::cout << "odometry: " << reversed

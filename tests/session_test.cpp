@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <optional>
 #include <random>
 
 #include "scanloc/worlds/laser_simulator.hpp"
@@ -453,6 +455,117 @@ TEST(SessionRecovery, WithoutTheWideSearchTheSameStretchLosesTheTrack) {
   EXPECT_EQ(run.recovered_at, -1);
   EXPECT_EQ(run.lost_scans, 0);
   EXPECT_GT(run.end_error_m, 1.0);
+}
+
+// The loop with its odometry edited by `edit` (taken away, or frozen at the first scan's), the
+// session starting at the true posture: the worst error over the localised scans and the counts.
+struct LoopWithoutOdometry {
+  double worst_m = 0.0, worst_rad = 0.0;
+  int localised = 0, validated = 0, motion_searches = 0, frozen = 0;
+};
+LoopWithoutOdometry RunLoop(const std::function<void(Iteration&)>& edit) {
+  Sequence sequence = LoopAroundTheRoom(5);
+  for (Iteration& iteration : sequence.iterations) edit(iteration);
+  SessionOptions options;
+  options.initial_pose = sequence.truth.front();
+  Session session(SessionConfig{options, {}}, {}, {}, PointMap{});
+  LoopWithoutOdometry run;
+  for (std::size_t i = 0; i < sequence.iterations.size(); ++i) {
+    const IterationRecord r = session.Process(sequence.iterations[i]);
+    if (r.skipped || r.first) continue;
+    const Pose2D error = Between(sequence.truth[i], r.T_world_robot);
+    run.worst_m = std::max(run.worst_m, std::hypot(error.x_m, error.y_m));
+    run.worst_rad = std::max(run.worst_rad, std::abs(error.yaw_rad));
+    ++run.localised;
+    run.validated += r.validated;
+    run.motion_searches += r.motion_search;
+    run.frozen += r.odometry_frozen;
+  }
+  return run;
+}
+
+// Without odometry every scan is localised from the last posture: the loop (5 cm steps, corners
+// turning 0.2 rad a scan) is tracked as closely as with it. Measured 2026-12-06: worst 0.011 m
+// and 0.002 rad, 119 of 119 scans validated.
+TEST(Session, WithoutOdometryTheLoopIsTrackedWithinTwoCentimetres) {
+  const LoopWithoutOdometry run = RunLoop([](Iteration& iteration) { iteration.odometry.reset(); });
+  EXPECT_EQ(run.localised, 119);
+  EXPECT_EQ(run.frozen, 0);
+  EXPECT_GE(run.validated, 115);
+  EXPECT_LT(run.worst_m, 0.02);
+  EXPECT_LT(run.worst_rad, 0.01);
+}
+
+// A robot without odometry turning in place 0.5 rad a scan, then 1.0 rad: from the last posture
+// the refinement stops 0.3 rad short and the rules reject it; the wide search over the motion
+// seen lately (±0.75 rad) finds the turn. Measured 2026-12-06: 0.001 m and 0.001 rad off with
+// the search, 0.129 m and 0.319 rad off (not validated) without.
+IterationRecord TurnWithoutOdometry(bool motion_search, Pose2D& truth) {
+  const LineMap world = Classroom();
+  std::mt19937 rng(9);
+  LaserSimulatorOptions laser;
+  laser.beam_count = 720;
+  SessionOptions options;
+  options.initial_pose = truth = {1.5, 2.0, 0.0};
+  options.motion_search.enabled = motion_search;
+  Session session(SessionConfig{options, {}}, {}, {}, PointMap{});
+  IterationRecord record;
+  for (int i = 0; i < 8; ++i) {
+    if (i > 0) truth = truth * Pose2D{0.0, 0.0, i < 7 ? 0.5 : 1.0};
+    Iteration iteration;
+    iteration.timestamp_s = i;
+    iteration.scan = SimulateLaser(world, truth, laser, rng);
+    record = session.Process(iteration);
+  }
+  return record;
+}
+
+TEST(Session, WithoutOdometryATurnBeyondTheRefinementsReachIsFoundByTheMotionSearch) {
+  Pose2D truth;
+  const IterationRecord searched = TurnWithoutOdometry(true, truth);
+  EXPECT_TRUE(searched.motion_search);
+  ASSERT_TRUE(searched.search_window.has_value());
+  // 1.5 times the largest turn seen lately, as the session estimated it.
+  EXPECT_NEAR(searched.search_window->half_yaw_rad, 0.75, 0.01);
+  EXPECT_TRUE(searched.validated);
+  const Pose2D error = Between(truth, searched.T_world_robot);
+  EXPECT_LT(std::hypot(error.x_m, error.y_m), 0.01);
+  EXPECT_LT(std::abs(error.yaw_rad), 0.01);
+  const IterationRecord refined = TurnWithoutOdometry(false, truth);
+  EXPECT_FALSE(refined.motion_search);
+  EXPECT_FALSE(refined.validated);
+  EXPECT_GT(std::abs(Between(truth, refined.T_world_robot).yaw_rad), 0.1);
+}
+
+// Odometry that repeats the first scan's pose (a log's pose fields left at zero) while the robot
+// drives the loop: once the ranges moved it is set aside, and the session runs as without it.
+// Measured 2026-12-06: 119 scans localised, all without the odometry, worst 0.011 m.
+TEST(Session, OdometryFrozenWhileTheRangesMoveIsSetAside) {
+  std::optional<Pose2D> first;
+  const auto frozen = [&first](Iteration& iteration) {
+    if (!first) first = iteration.odometry;
+    iteration.odometry = first;
+  };
+  const LoopWithoutOdometry run = RunLoop(frozen);
+  EXPECT_GE(run.localised, 115);
+  EXPECT_EQ(run.frozen, run.localised);
+  EXPECT_LT(run.worst_m, 0.02);
+  EXPECT_LT(run.worst_rad, 0.01);
+}
+
+// A robot standing still with its odometry at rest sees the same ranges: its scans are skipped,
+// the odometry is not taken for frozen.
+TEST(Session, AStillRobotsUnchangingOdometryIsNotTakenForFrozen) {
+  const Sequence sequence = LoopAroundTheRoom(6);
+  Session session(SessionConfig{}, {}, {}, PointMap{});
+  session.Process(sequence.iterations[0]);
+  for (int i = 1; i <= 5; ++i) {
+    Iteration again = sequence.iterations[0];
+    again.timestamp_s = 0.05 * i;
+    const IterationRecord r = session.Process(again);
+    EXPECT_TRUE(r.skipped) << i;
+    EXPECT_FALSE(r.odometry_frozen) << i;
+  }
 }
 
 }  // namespace

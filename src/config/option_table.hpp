@@ -206,6 +206,27 @@ void VisitSession(C& c, V& v) {
     "free space");
   v("session.initial_pose", s.initial_pose, kPosition, kHeading,
     "T_world_robot of the first iteration, [x m, y m, yaw rad]");
+  v("session.ignore_odometry", s.ignore_odometry,
+    "the log's odometry is not used: every scan is localised as in a log without odometry");
+  v("session.motion_search", s.motion_search.enabled,
+    "a scan without odometry that the rules do not confirm from the last posture, or only "
+    "beyond the minima below, is searched for (wide search) around it over the motion seen "
+    "lately, and the correction gate does not apply; off: as a scan with odometry, from the last "
+    "posture alone");
+  v("session.motion_search_scale", s.motion_search.scale, Bounds{1e-3, 100},
+    "... the window: this times the largest motion between consecutive localised scans ...");
+  v("session.motion_search_scans", s.motion_search.scans, Bounds{1, 1e5},
+    "... over the last this many confirmed ones ...");
+  v("session.motion_search_min_m", s.motion_search.min_half_width_m, Bounds{0, 1e3},
+    "... at least this half width, m (within recovery's maxima; recovery's minima until 5 "
+    "motions are known)");
+  v("session.motion_search_min_rad", s.motion_search.min_half_yaw_rad, kAngle,
+    "... and at least this half heading range, rad");
+  v("session.frozen_odometry_range_change_m", s.motion_search.frozen_odometry_range_change_m,
+    Bounds{0, 1e3},
+    "while the odometry has not moved since the first scan, a scan whose ranges changed by more "
+    "than this since the last localised scan (median over the beams) is localised without it, "
+    "m; 0: the odometry is always believed");
 }
 
 template <class C, class V>

@@ -136,6 +136,9 @@ void WriteOutcome(JsonWriter& out, const IterationRecord& r) {
   out.EndObject();
   if (r.lost) out.Member(keys::kLost, true);
   if (r.recovered) out.Member(keys::kRecovered, true);
+  if (r.motion_search) out.Member(keys::kMotionSearch, true);
+  if (r.without_odometry) out.Member(keys::kWithoutOdometry, true);
+  if (r.odometry_frozen) out.Member(keys::kOdometryFrozen, true);
 }
 
 // The candidates tried and the refinement kept, when the scan was localised.

@@ -115,7 +115,10 @@ void SessionCounts::Add(const IterationRecord& record) {
   validated += record.validated;
   flagged += !record.skipped && !record.validated;
   inserted += record.inserted;
-  searches += record.search.has_value();
+  searches += record.search.has_value() && !record.motion_search;
+  without_odometry += record.without_odometry;
+  motion_searches += record.motion_search;
+  odometry_frozen += record.odometry_frozen;
   recoveries += record.recovered;
   refused_corrections += record.beyond_odometry;
   lost_stretches += record.lost && !was_lost;
@@ -264,6 +267,9 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
       {"inserted", c.inserted},
       {"lost_stretches", c.lost_stretches},
       {"wide_searches", c.searches},
+      {"localised_without_odometry", c.without_odometry},
+      {"motion_searches", c.motion_searches},
+      {"odometry_frozen_scans", c.odometry_frozen},
       {"recoveries", c.recoveries},
       {"refused_corrections", c.refused_corrections},
       {"lost_at_end", c.was_lost},

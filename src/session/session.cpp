@@ -57,6 +57,7 @@ void SessionOptions::Validate() const {
   motion_prior.Validate();
   correction_gate.Validate();
   recovery.Validate();
+  motion_search.Validate();
   loop_closure.Validate();
   require(std::isfinite(initial_pose.x_m) && std::isfinite(initial_pose.y_m) &&
               std::isfinite(initial_pose.yaw_rad),
@@ -73,7 +74,8 @@ Session::Session(const SessionConfig& config, LaserMounting mounting, LineMap li
       signature_(options_.signature),
       drift_(options_.recovery),
       gate_(options_.correction_gate),
-      loop_(options_.loop_closure, mounting_) {
+      loop_(options_.loop_closure, mounting_),
+      motion_(options_.motion_search) {
   options_.Validate();
   if (options_.loop_closure.enabled) loop_.SetPriorMap(point_map_);
   localisation_.validation.Validate();
@@ -92,9 +94,13 @@ IterationRecord Session::Replay(const Iteration& iteration, const RecordedIterat
   return record;
 }
 
-IterationRecord Session::Step(const Iteration& iteration, const RecordedIteration* recorded) {
+IterationRecord Session::Step(const Iteration& given, const RecordedIteration* recorded) {
   const auto start = std::chrono::steady_clock::now();
+  std::optional<Iteration> stripped;
+  bool frozen = false;
+  const Iteration& iteration = UsableOdometry(given, stripped, frozen);
   IterationRecord record = BeginRecord(iteration, count_);
+  record.odometry_frozen = frozen;
   record.prediction = Predict(iteration);
   if (iteration.odometry && last_odometry_) {
     drift_.Moved(Between(*last_odometry_, *iteration.odometry));
@@ -114,7 +120,9 @@ IterationRecord Session::Step(const Iteration& iteration, const RecordedIteratio
   } else {
     LocaliseInto(record, iteration);
   }
+  record.without_odometry = !record.skipped && !record.first && !iteration.odometry;
   MaybeExtend(record, iteration.scan);
+  if (!record.skipped && !odometry_moved_ && given.odometry) still_against_ = iteration.scan;
   if (count_ == 0 && iteration.odometry) last_localised_odometry_ = *iteration.odometry;
   last_pose_ = record.T_world_robot;
   std::optional<Eigen::Matrix3d> covariance;
@@ -130,6 +138,42 @@ IterationRecord Session::Step(const Iteration& iteration, const RecordedIteratio
   record.map_points = point_map_.live_size();
   record.total_s = SecondsSince(start);
   return record;
+}
+
+const Iteration& Session::UsableOdometry(const Iteration& given, std::optional<Iteration>& stripped,
+                                         bool& frozen) {
+  frozen = false;
+  if (!given.odometry) return given;
+  if (!options_.ignore_odometry) {
+    if (!first_odometry_) first_odometry_ = given.odometry;
+    // A millimetre or a milliradian: an odometry at rest repeats its pose.
+    odometry_moved_ =
+        odometry_moved_ || MovedMoreThan(*first_odometry_, *given.odometry, 1e-3, 1e-3);
+    const double threshold_m = options_.motion_search.frozen_odometry_range_change_m;
+    if (odometry_moved_ || !(threshold_m > 0.0) || !still_against_) return given;
+    // Once the ranges moved without it, the odometry stays unused until it moves itself.
+    if (!odometry_found_frozen_) {
+      const std::optional<double> change_m = MedianRangeChange(*still_against_, given.scan);
+      if (change_m && *change_m <= threshold_m) return given;
+      odometry_found_frozen_ = true;
+    }
+    frozen = true;
+  }
+  stripped = given;
+  stripped->odometry.reset();
+  return *stripped;
+}
+
+bool Session::NeedsMotionSearch(const IterationRecord& record) const {
+  const RankedCandidate* kept = record.Kept();
+  if (!record.localisation->validated() || kept == nullptr) return true;
+  const Pose2D moved = Between(record.prediction, kept->T_world_robot);
+  return std::hypot(moved.x_m, moved.y_m) > options_.motion_search.min_half_width_m ||
+         std::abs(NormalizeAngle(moved.yaw_rad)) > options_.motion_search.min_half_yaw_rad;
+}
+
+bool Session::SearchesMotion(const Iteration& iteration) const {
+  return !iteration.odometry && count_ > 0 && options_.motion_search.enabled;
 }
 
 MapView Session::View() const {
@@ -225,13 +269,26 @@ void Session::LocaliseInto(IterationRecord& record, const Iteration& iteration) 
   AddMotionPrior(options, record.prediction, iteration);
   std::vector<Candidate> search;
   const bool was_lost = drift_.lost();
+  const bool searches_motion = SearchesMotion(iteration);
   if (was_lost) AddSearchCandidates(record, iteration.scan, search);
   record.localisation = LocaliseCandidates(record.prediction, iteration, search, options);
+  // Without odometry the map is searched when the last posture's candidates found nothing the
+  // rules confirm, or only by moving farther than the search's minima (a dense log's scans
+  // rarely need it, a sparse log's, 0.6–1 m apart, always do).
+  if (searches_motion && !was_lost && NeedsMotionSearch(record)) {
+    MotionSearchWindow(record);
+    Search(record, iteration.scan, search);
+    const LocalisationResult first = std::move(*record.localisation);
+    record.localisation = LocaliseCandidates(record.prediction, iteration, search, options);
+    record.localisation->evaluate_s += first.evaluate_s;
+    record.localisation->refine_s += first.refine_s;
+  }
   const RankedCandidate& kept = *record.Kept();
   record.verdict = kept.verdict;
   record.validated = record.localisation->validated();
-  // The wide search's window, not the gate, bounds a lost session's correction.
-  if (!was_lost) {
+  // The wide search's window, not the gate, bounds a lost session's correction (and a scan
+  // without odometry has no odometry to be beyond).
+  if (!was_lost && !searches_motion) {
     record.correction_bound = gate_.Bound(drift_.unconfirmed());
     RefinementSupport support{kept.test.MatchRatio(), std::nullopt};
     if (kept.refinement && kept.refinement->has_covariance)
@@ -240,10 +297,14 @@ void Session::LocaliseInto(IterationRecord& record, const Iteration& iteration) 
         gate_.Refuses(record.prediction, kept.T_world_robot, support, drift_.unconfirmed());
     if (record.beyond_odometry) record.validated = false;
   }
-  record.T_world_robot = TakesPrediction(record, kept) ? record.prediction : kept.T_world_robot;
+  // Without odometry the prediction is only the last posture: nothing the scan could not
+  // disprove.
+  record.T_world_robot =
+      !searches_motion && TakesPrediction(record, kept) ? record.prediction : kept.T_world_robot;
   if (record.validated) {
     signature_.Add(kept.test);
-    gate_.Add(Between(record.prediction, record.T_world_robot), kept.test.MatchRatio());
+    if (!searches_motion)
+      gate_.Add(Between(record.prediction, record.T_world_robot), kept.test.MatchRatio());
   }
   AfterLocalised(record, iteration, was_lost);
 }
@@ -256,10 +317,14 @@ void Session::RestoreLocalised(IterationRecord& record, const Iteration& iterati
     throw ReplayMismatch("the replay localises the scan, the record says it was not localised");
   BoundedOptions(record);
   const bool was_lost = drift_.lost();
+  const bool searches_motion = SearchesMotion(iteration);
   record.beyond_odometry = recorded.refused.has_value();
-  if (!was_lost) gate_.Restore(recorded.refused);
+  if (!was_lost && !searches_motion) gate_.Restore(recorded.refused);
   if (was_lost) {
     record.search_window = drift_.Window(mounting_.LaserPose(record.prediction));
+    record.search.emplace();
+  } else if (searches_motion && recorded.searched) {
+    MotionSearchWindow(record);
     record.search.emplace();
   }
   record.localisation.emplace();
@@ -270,7 +335,8 @@ void Session::RestoreLocalised(IterationRecord& record, const Iteration& iterati
     if (!recorded.kept_test)
       throw ReplayMismatch("the record is confirmed but holds no Likelihood Test of its posture");
     signature_.Add(*recorded.kept_test);
-    gate_.Add(Between(record.prediction, record.T_world_robot), recorded.kept_test->MatchRatio());
+    if (!searches_motion)
+      gate_.Add(Between(record.prediction, record.T_world_robot), recorded.kept_test->MatchRatio());
   }
   AfterLocalised(record, iteration, was_lost);
 }
@@ -324,6 +390,8 @@ void Session::AfterLocalised(IterationRecord& record, const Iteration& iteration
   record.lost = drift_.lost();
   record.recovered = was_lost && record.validated;
   if (iteration.odometry) last_localised_odometry_ = *iteration.odometry;
+  if (record.validated && SearchesMotion(iteration))
+    motion_.Add(Between(last_pose_, record.T_world_robot));
 }
 
 // The wide search's best postures over the window the odometry's drift may have left since the
@@ -331,6 +399,19 @@ void Session::AfterLocalised(IterationRecord& record, const Iteration& iteration
 void Session::AddSearchCandidates(IterationRecord& record, const LaserScan& scan,
                                   std::vector<Candidate>& candidates) const {
   record.search_window = drift_.Window(mounting_.LaserPose(record.prediction));
+  Search(record, scan, candidates);
+}
+
+// Around the last posture, over the motion seen lately (at first, the recovery's initial window).
+void Session::MotionSearchWindow(IterationRecord& record) const {
+  const RecoveryOptions& r = options_.recovery;
+  record.search_window = motion_.Window(mounting_.LaserPose(record.prediction), r.min_half_width_m,
+                                        r.min_half_yaw_rad, r.max_half_width_m, r.max_half_yaw_rad);
+  record.motion_search = true;
+}
+
+void Session::Search(IterationRecord& record, const LaserScan& scan,
+                     std::vector<Candidate>& candidates) const {
   record.search = WideSearch(View(), scan, *record.search_window, options_.recovery.search);
   for (std::size_t i = 0; i < record.search->candidates.size(); ++i)
     candidates.push_back({mounting_.RobotPose(record.search->candidates[i].T_world_laser),

@@ -36,6 +36,10 @@ struct SessionCounts {
   std::size_t lost_stretches = 0, searches = 0, recoveries = 0;
   // Refinements the correction gate refused (the scan kept the odometry's prediction).
   std::size_t refused_corrections = 0;
+  // Scans localised without odometry (none in the log, ignored, or frozen), those of them the map
+  // was searched for over the motion seen lately, and those whose odometry had not moved since the
+  // first scan while the ranges did.
+  std::size_t without_odometry = 0, motion_searches = 0, odometry_frozen = 0;
   bool was_lost = false;  // lost after the last scan
   // Localisation on a saved map: the first scan whose posture was confirmed (its index and time),
   // the scans with several hypotheses, the most held at once, the scans without a posture.

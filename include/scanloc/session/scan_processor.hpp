@@ -70,9 +70,16 @@ struct IterationRecord {
   // went beyond it (then it was neither confirmed nor kept: the scan took the prediction).
   std::optional<CorrectionBound> correction_bound;
   bool beyond_odometry = false;
-  // The wide search, when the session was lost before this scan: its window and what it found.
+  // The wide search, when the session was lost before this scan or the scan had no odometry
+  // (motion_search: the window of the motion seen lately): its window and what it found.
   std::optional<SearchWindow> search_window;
   std::optional<WideSearchResult> search;
+  bool motion_search = false;
+  // Localised with no odometry to predict from (none in the log, ignored, or frozen).
+  bool without_odometry = false;
+  // The log's odometry had not moved since the first scan while the ranges did: it was not used
+  // for this scan (session.motion_search.frozen_odometry_range_change_m).
+  bool odometry_frozen = false;
   // Localisation on a saved map (Localiser): "searching", "ambiguous", "tentative" or "confirmed"
   // ("" in a session), and the hypotheses held after this scan, best first. A scan without a
   // hypothesis has no posture (posed false): it is left out of the trajectory.

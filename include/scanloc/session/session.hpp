@@ -19,6 +19,7 @@
 #include "scanloc/session/loop_closure.hpp"
 #include "scanloc/session/map_extension.hpp"
 #include "scanloc/session/map_signature.hpp"
+#include "scanloc/session/motion_search.hpp"
 #include "scanloc/session/recovery.hpp"
 #include "scanloc/session/scan_processor.hpp"
 
@@ -107,6 +108,11 @@ struct SessionOptions {
   CorrectionGateOptions correction_gate;
   // When the session counts itself lost, and the wide search it then adds.
   RecoveryOptions recovery;
+  // The log's odometry is not used: every scan is localised as in a log without odometry
+  // (motion_search), for odometry the user knows to be wrong.
+  bool ignore_odometry = false;
+  // Scans without odometry, searched for over the motion seen lately (motion_search.hpp).
+  MotionSearchOptions motion_search;
   // Nodes, closures and the pose graph whose corrections move the map.
   LoopClosureOptions loop_closure;
   Pose2D initial_pose;  // T_world_robot of the first iteration (§3.2.2: by convention)
@@ -162,7 +168,16 @@ class Session : public ScanProcessor {
 
  private:
   // One iteration, localised, or replayed from `recorded` when it is given.
-  IterationRecord Step(const Iteration& iteration, const RecordedIteration* recorded);
+  IterationRecord Step(const Iteration& given, const RecordedIteration* recorded);
+  // `given`, or a copy in `stripped` without its odometry: with ignore_odometry, or while the
+  // odometry has not moved since the first scan and the ranges did (`frozen` then says so).
+  const Iteration& UsableOdometry(const Iteration& given, std::optional<Iteration>& stripped,
+                                  bool& frozen);
+  // A localised scan with no odometry to predict from: searched for over the motion seen lately.
+  bool SearchesMotion(const Iteration& iteration) const;
+  // Whether such a scan's localisation from the last posture leaves the map to be searched: the
+  // rules confirmed nothing, or the refinement moved beyond the search's minima.
+  bool NeedsMotionSearch(const IterationRecord& record) const;
   MapView View() const;
   Pose2D Predict(const Iteration& iteration) const;
   bool ShouldLocalise(const Iteration& iteration) const;
@@ -172,6 +187,11 @@ class Session : public ScanProcessor {
                                         const LocalisationOptions& options) const;
   void AddSearchCandidates(IterationRecord& record, const LaserScan& scan,
                            std::vector<Candidate>& candidates) const;
+  // The window of a scan without odometry (SearchesMotion), into `record`.
+  void MotionSearchWindow(IterationRecord& record) const;
+  // The wide search over `record`'s window, its postures appended to `candidates`.
+  void Search(IterationRecord& record, const LaserScan& scan,
+              std::vector<Candidate>& candidates) const;
   void LocaliseInto(IterationRecord& record, const Iteration& iteration);
   void RestoreLocalised(IterationRecord& record, const Iteration& iteration,
                         const RecordedIteration& recorded);
@@ -207,6 +227,11 @@ class Session : public ScanProcessor {
   LoopCloser loop_;
   std::size_t count_ = 0;
   Pose2D last_pose_;  // T_world_robot of the previous iteration
+  MotionWindow motion_;
+  std::optional<Pose2D> first_odometry_;
+  bool odometry_moved_ = false;             // since the first scan's
+  bool odometry_found_frozen_ = false;      // not moved while the ranges did
+  std::optional<LaserScan> still_against_;  // the last localised scan, while it has not moved
   std::optional<Pose2D> last_odometry_;
   Pose2D last_localised_odometry_;  // odometry at the last localised iteration
   std::optional<Pose2D> last_inserted_pose_;
