@@ -56,10 +56,14 @@ void PrintWarnings(const nlohmann::json& summary) {
     std::cout << "\n";
   }
   const std::size_t without = summary["localised_without_odometry"].get<std::size_t>();
+  const std::size_t searched = summary["motion_searches"].get<std::size_t>();
   if (without > 0)
-    std::cout << "odometry: none for " << without << " localised scans; the map was searched for "
-              << summary["motion_searches"].get<std::size_t>()
-              << " of them around the last posture, over the motion seen lately\n";
+    std::cout << "odometry: none for " << without << " localised scans"
+              << (searched > 0 ? "; the map was searched for " + std::to_string(searched) +
+                                     " of them around the last posture, over the motion seen "
+                                     "lately"
+                               : std::string())
+              << "\n";
   const std::size_t frozen = summary["odometry_frozen_scans"].get<std::size_t>();
   if (frozen > 0)
     std::cerr << "warning: the log's odometry had not moved since the first scan while the scans "

@@ -94,5 +94,35 @@ TEST(MedianRangeChange, IsNothingForScansOfDifferentLayouts) {
   EXPECT_DOUBLE_EQ(*MedianRangeChange(a, a), 0.0);
 }
 
+Iteration At(const Pose2D& odometry, double range_m) {
+  Iteration iteration;
+  iteration.scan = Scan(std::vector<double>(30, range_m));
+  iteration.odometry = odometry;
+  return iteration;
+}
+
+TEST(FrozenOdometry, IsSetAsideOnceTheRangesMovedAndUntilTheOdometryMoves) {
+  FrozenOdometry frozen(0.1);
+  EXPECT_FALSE(frozen.SetAside(At({}, 2.0)));   // the first scan
+  EXPECT_FALSE(frozen.SetAside(At({}, 2.05)));  // standing still: the ranges 5 cm apart
+  EXPECT_TRUE(frozen.SetAside(At({}, 2.3)));    // the ranges moved, the odometry did not
+  EXPECT_TRUE(frozen.SetAside(At({}, 2.0)));    // and from then on it stays aside
+  EXPECT_FALSE(frozen.SetAside(At({0.002, 0.0, 0.0}, 2.3)));  // until it moves itself
+  EXPECT_FALSE(frozen.SetAside(At({}, 5.0)));
+}
+
+TEST(FrozenOdometry, IsNeverSetAsideWhenItMovesOrWithAThresholdOfZero) {
+  FrozenOdometry moving(0.1);
+  EXPECT_FALSE(moving.SetAside(At({}, 2.0)));
+  EXPECT_FALSE(moving.SetAside(At({0.0, 0.0, 0.01}, 3.0)));
+  FrozenOdometry believed(0.0);
+  EXPECT_FALSE(believed.SetAside(At({}, 2.0)));
+  EXPECT_FALSE(believed.SetAside(At({}, 3.0)));
+  Iteration none = At({}, 3.0);
+  none.odometry.reset();
+  FrozenOdometry absent(0.1);
+  EXPECT_FALSE(absent.SetAside(none));  // a scan without odometry has nothing to set aside
+}
+
 }  // namespace
 }  // namespace scanloc

@@ -224,9 +224,9 @@ void VisitSession(C& c, V& v) {
     "... and at least this half heading range, rad");
   v("session.frozen_odometry_range_change_m", s.motion_search.frozen_odometry_range_change_m,
     Bounds{0, 1e3},
-    "while the odometry has not moved since the first scan, a scan whose ranges changed by more "
-    "than this since the last localised scan (median over the beams) is localised without it, "
-    "m; 0: the odometry is always believed");
+    "while the odometry has not moved since the first scan, a scan whose ranges differ from the "
+    "first scan's by more than this (median over the beams) sets the odometry aside until it "
+    "moves, m; 0: the odometry is always believed");
 }
 
 template <class C, class V>

@@ -42,6 +42,35 @@ SearchWindow MotionWindow::Window(const Pose2D& T_world_laser, double initial_ha
   return {T_world_laser, std::min(half_m, max_half_width_m), std::min(half_rad, max_half_yaw_rad)};
 }
 
+bool FrozenOdometry::SetAside(const Iteration& given) {
+  if (!given.odometry) return false;
+  if (!first_) {
+    first_ = given.odometry;
+    if (range_change_m_ > 0.0) first_scan_ = given.scan;
+    return false;
+  }
+  // A millimetre or a milliradian: an odometry at rest repeats its pose.
+  const Pose2D since = Between(*first_, *given.odometry);
+  moved_ = moved_ || std::hypot(since.x_m, since.y_m) > 1e-3 ||
+           std::abs(NormalizeAngle(since.yaw_rad)) > 1e-3;
+  if (moved_ || !first_scan_) {
+    first_scan_.reset();
+    return false;
+  }
+  if (found_frozen_) return true;
+  const std::optional<double> change_m = MedianRangeChange(*first_scan_, given.scan);
+  found_frozen_ = !change_m || *change_m > range_change_m_;
+  return found_frozen_;
+}
+
+const Iteration& WithoutOdometryIf(bool strip, const Iteration& given,
+                                   std::optional<Iteration>& stripped) {
+  if (!strip || !given.odometry) return given;
+  stripped = given;
+  stripped->odometry.reset();
+  return *stripped;
+}
+
 std::optional<double> MedianRangeChange(const LaserScan& a, const LaserScan& b,
                                         std::size_t min_beams) {
   if (a.size() != b.size() || a.layout.angle_min_rad != b.layout.angle_min_rad ||

@@ -75,7 +75,8 @@ Session::Session(const SessionConfig& config, LaserMounting mounting, LineMap li
       drift_(options_.recovery),
       gate_(options_.correction_gate),
       loop_(options_.loop_closure, mounting_),
-      motion_(options_.motion_search) {
+      motion_(options_.motion_search),
+      frozen_(options_.motion_search.frozen_odometry_range_change_m) {
   options_.Validate();
   if (options_.loop_closure.enabled) loop_.SetPriorMap(point_map_);
   localisation_.validation.Validate();
@@ -122,7 +123,6 @@ IterationRecord Session::Step(const Iteration& given, const RecordedIteration* r
   }
   record.without_odometry = !record.skipped && !record.first && !iteration.odometry;
   MaybeExtend(record, iteration.scan);
-  if (!record.skipped && !odometry_moved_ && given.odometry) still_against_ = iteration.scan;
   if (count_ == 0 && iteration.odometry) last_localised_odometry_ = *iteration.odometry;
   last_pose_ = record.T_world_robot;
   std::optional<Eigen::Matrix3d> covariance;
@@ -142,26 +142,8 @@ IterationRecord Session::Step(const Iteration& given, const RecordedIteration* r
 
 const Iteration& Session::UsableOdometry(const Iteration& given, std::optional<Iteration>& stripped,
                                          bool& frozen) {
-  frozen = false;
-  if (!given.odometry) return given;
-  if (!options_.ignore_odometry) {
-    if (!first_odometry_) first_odometry_ = given.odometry;
-    // A millimetre or a milliradian: an odometry at rest repeats its pose.
-    odometry_moved_ =
-        odometry_moved_ || MovedMoreThan(*first_odometry_, *given.odometry, 1e-3, 1e-3);
-    const double threshold_m = options_.motion_search.frozen_odometry_range_change_m;
-    if (odometry_moved_ || !(threshold_m > 0.0) || !still_against_) return given;
-    // Once the ranges moved without it, the odometry stays unused until it moves itself.
-    if (!odometry_found_frozen_) {
-      const std::optional<double> change_m = MedianRangeChange(*still_against_, given.scan);
-      if (change_m && *change_m <= threshold_m) return given;
-      odometry_found_frozen_ = true;
-    }
-    frozen = true;
-  }
-  stripped = given;
-  stripped->odometry.reset();
-  return *stripped;
+  frozen = !options_.ignore_odometry && frozen_.SetAside(given);
+  return WithoutOdometryIf(options_.ignore_odometry || frozen, given, stripped);
 }
 
 bool Session::NeedsMotionSearch(const IterationRecord& record) const {

@@ -16,6 +16,7 @@
 
 #include "scanloc/geometry/laser_scan.hpp"
 #include "scanloc/geometry/pose2d.hpp"
+#include "scanloc/session/iteration.hpp"
 #include "scanloc/session/wide_search.hpp"
 
 namespace scanloc {
@@ -26,10 +27,10 @@ struct MotionSearchOptions {
   int scans = 50;
   double min_half_width_m = 0.2;
   double min_half_yaw_rad = 0.1;
-  // While the odometry has not moved since the first scan, a scan whose ranges changed since the
-  // last localised scan by more than this (the median over the beams valid in both) is localised
-  // without it: a robot standing still sees the same ranges, one that moves with frozen odometry
-  // does not. 0: the odometry is always believed.
+  // While the odometry has not moved since the first scan, a scan whose ranges differ from the
+  // first scan's by more than this (the median over the beams valid in both) means the robot moved
+  // without it (FrozenOdometry): a robot standing still sees the same ranges. 0: the odometry is
+  // always believed.
   double frozen_odometry_range_change_m = 0.1;
   // Throws std::invalid_argument naming the first option out of its domain.
   void Validate() const;
@@ -55,6 +56,29 @@ class MotionWindow {
   MotionSearchOptions options_;
   std::deque<double> translations_m_, rotations_rad_;
 };
+
+// Odometry that has not moved since the first scan while the scans did (a log whose pose fields
+// were left at zero): once a scan's ranges differ from the first scan's by more than
+// `range_change_m` (the median over the beams; 0: never), the odometry is set aside until it
+// moves itself. A robot standing still sees the same ranges, and its resting odometry is believed.
+class FrozenOdometry {
+ public:
+  explicit FrozenOdometry(double range_change_m) : range_change_m_(range_change_m) {}
+
+  // Whether the odometry `given` carries is to be set aside for it.
+  bool SetAside(const Iteration& given);
+
+ private:
+  double range_change_m_;
+  std::optional<Pose2D> first_;
+  std::optional<LaserScan> first_scan_;
+  bool moved_ = false;         // since the first scan's
+  bool found_frozen_ = false;  // not moved while the ranges did
+};
+
+// `given`, or a copy of it in `stripped` without its odometry when `strip`.
+const Iteration& WithoutOdometryIf(bool strip, const Iteration& given,
+                                   std::optional<Iteration>& stripped);
 
 // The median of |a_k − b_k| over the beams valid in both scans, m; nothing when the scans' layouts
 // differ or fewer than `min_beams` beams are valid in both.

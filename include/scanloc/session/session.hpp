@@ -228,10 +228,7 @@ class Session : public ScanProcessor {
   std::size_t count_ = 0;
   Pose2D last_pose_;  // T_world_robot of the previous iteration
   MotionWindow motion_;
-  std::optional<Pose2D> first_odometry_;
-  bool odometry_moved_ = false;             // since the first scan's
-  bool odometry_found_frozen_ = false;      // not moved while the ranges did
-  std::optional<LaserScan> still_against_;  // the last localised scan, while it has not moved
+  FrozenOdometry frozen_;
   std::optional<Pose2D> last_odometry_;
   Pose2D last_localised_odometry_;  // odometry at the last localised iteration
   std::optional<Pose2D> last_inserted_pose_;
