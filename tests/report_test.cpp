@@ -583,6 +583,22 @@ TEST_F(ReportTest, ARunWithAnEmptyMapAndNoValidCandidateRendersWithMessages) {
   EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
 }
 
+// A run without odometry says so in its summary table: how many scans went without it, how many
+// the map was searched for, and how many because the odometry never moved while the ranges did.
+TEST_F(ReportTest, TheSummaryTableCountsTheScansLocalisedWithoutOdometry) {
+  WriteRecords({Localised(0, true), Localised(1, true)});
+  SavePointMapPcd(PointMap{}, dir_ + "/map.pcd");
+  Write("summary.json", nlohmann::json{{"localised_without_odometry", 1234},
+                                       {"motion_searches", 56},
+                                       {"odometry_frozen_scans", 789}}
+                            .dump());
+  const std::string html = ReadText(WriteRunReport(dir_, Everything()).path);
+  EXPECT_TRUE(Contains(html, "<th>scans localised without odometry</th><td>1234</td>")) << html;
+  EXPECT_TRUE(Contains(html, "<th>searches over the motion seen lately</th><td>56</td>"));
+  EXPECT_TRUE(Contains(
+      html, "<th>scans whose odometry had not moved while the ranges did</th><td>789</td>"));
+}
+
 // Runs written before E_max had one key kept the session's as session.max_expect_value_m: the
 // report reads it as the rule 2 the session applied, without a note.
 TEST_F(ReportTest, AnOlderRunsSessionExpectValueLimitIsReadAsValidations) {
@@ -620,8 +636,9 @@ TEST_F(ReportTest, ARunWithLoopClosuresHasTheirSectionWithTheirCounts) {
   const std::string html = ReadText(WriteRunReport(dir_).path);
   EXPECT_TRUE(Contains(html, "<h2 id=\"closures\">Loop closures</h2>"));
   EXPECT_TRUE(Contains(html, "2 closures tried, 1 matched against the old nodes, 1 accepted."));
-  EXPECT_TRUE(Contains(html, "scan 3 with scan 1, accepted: 0.0 cm, 0.00°; the graph moved a "
-                             "node 2.0 cm"));
+  EXPECT_TRUE(Contains(html,
+                       "scan 3 with scan 1, accepted: 0.0 cm, 0.00°; the graph moved a "
+                       "node 2.0 cm"));
 }
 
 TEST_F(ReportTest, MissingSummaryAndMapAreSaidAndTheRestRenders) {

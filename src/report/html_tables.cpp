@@ -97,27 +97,31 @@ std::string SummaryTable(const json& summary, const std::vector<IterationRow>& r
          FormatFixed(rows.back().timestamp_s - rows.front().timestamp_s, 1) + " s");
   }
   // What only summary.json knows, in a fixed order; other keys follow as they come.
-  static const char* const kKnown[][2] = {{"log", "sequence"},
-                                          {"interrupted", "interrupted"},
-                                          {"wall_time_s", "wall time [s]"},
-                                          {"scans_per_s", "scans per second"},
-                                          {"times_real_time", "× real time"},
-                                          {"cpu_time_s", "CPU time, user + system [s]"},
-                                          {"times_real_time_on_cpu", "× real time on CPU"},
-                                          {"peak_resident_mb", "peak memory [MB]"},
-                                          {"lost_stretches", "times lost"},
-                                          {"wide_searches", "wide searches"},
-                                          {"recoveries", "recoveries"},
-                                          {"refused_corrections", "corrections refused"},
-                                          {"lost_at_end", "lost at the end"},
-                                          {"first_confirmed_scan", "first confirmed scan"},
-                                          {"seconds_to_confirm", "seconds to confirm"},
-                                          {"ambiguous_scans", "ambiguous scans"},
-                                          {"max_hypotheses", "hypotheses at most"},
-                                          {"scans_without_posture", "scans without a posture"},
-                                          {"hypotheses_over_time", "hypotheses over time"},
-                                          {"loop_closure", "loop closure"},
-                                          {"problem", "problem"}};
+  static const char* const kKnown[][2] = {
+      {"log", "sequence"},
+      {"interrupted", "interrupted"},
+      {"wall_time_s", "wall time [s]"},
+      {"scans_per_s", "scans per second"},
+      {"times_real_time", "× real time"},
+      {"cpu_time_s", "CPU time, user + system [s]"},
+      {"times_real_time_on_cpu", "× real time on CPU"},
+      {"peak_resident_mb", "peak memory [MB]"},
+      {"lost_stretches", "times lost"},
+      {"wide_searches", "wide searches"},
+      {"recoveries", "recoveries"},
+      {"refused_corrections", "corrections refused"},
+      {"localised_without_odometry", "scans localised without odometry"},
+      {"motion_searches", "searches over the motion seen lately"},
+      {"odometry_frozen_scans", "scans whose odometry had not moved while the ranges did"},
+      {"lost_at_end", "lost at the end"},
+      {"first_confirmed_scan", "first confirmed scan"},
+      {"seconds_to_confirm", "seconds to confirm"},
+      {"ambiguous_scans", "ambiguous scans"},
+      {"max_hypotheses", "hypotheses at most"},
+      {"scans_without_posture", "scans without a posture"},
+      {"hypotheses_over_time", "hypotheses over time"},
+      {"loop_closure", "loop closure"},
+      {"problem", "problem"}};
   for (const auto& [key, name] : kKnown)
     if (const auto it = summary.find(key); it != summary.end())
       line(name, std::string(key) == "hypotheses_over_time" ? HypothesesOverTime(*it)
