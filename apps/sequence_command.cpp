@@ -57,8 +57,12 @@ void PrintWarnings(const nlohmann::json& summary) {
   }
   const std::size_t without = summary["localised_without_odometry"].get<std::size_t>();
   const std::size_t searched = summary["motion_searches"].get<std::size_t>();
+  const std::size_t from_scans = summary["odometry_from_scans"].get<std::size_t>();
   if (without > 0)
     std::cout << "odometry: none for " << without << " localised scans"
+              << (from_scans > 0 ? "; " + std::to_string(from_scans) +
+                                       " of them moved by their match on the scan before"
+                                 : std::string())
               << (searched > 0 ? "; the map was searched for " + std::to_string(searched) +
                                      " of them around the last posture, over the motion seen "
                                      "lately"

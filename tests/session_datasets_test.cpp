@@ -54,29 +54,6 @@ class SessionOnPublicLog : public testing::TemporaryDirTest {
   testing::ScanlocRun run_;  // the last RunPrefix's
 };
 
-// A copy of the public log `log` at `path` whose FLASER pose fields (x y θ and the odometry's)
-// are all zero, as in a log whose odometry was never filled in.
-void WriteWithZeroedOdometry(const std::string& log, const std::string& path) {
-  gzFile in = gzopen((testing::DatasetsDir() + "/" + log + ".clf.gz").c_str(), "rb");
-  gzFile out = gzopen(path.c_str(), "wb");
-  ASSERT_TRUE(in != nullptr && out != nullptr);
-  std::vector<char> buffer(1 << 16);
-  while (gzgets(in, buffer.data(), static_cast<int>(buffer.size())) != nullptr) {
-    std::istringstream line(buffer.data());
-    std::vector<std::string> fields{std::istream_iterator<std::string>(line), {}};
-    if (fields.size() > 2 && fields[0] == "FLASER") {
-      const std::size_t beams = std::stoul(fields[1]);
-      for (std::size_t f = 2 + beams; f < 8 + beams && f < fields.size(); ++f) fields[f] = "0";
-    }
-    std::string text;
-    for (const std::string& field : fields) text += (text.empty() ? "" : " ") + field;
-    text += "\n";
-    gzwrite(out, text.data(), static_cast<unsigned>(text.size()));
-  }
-  gzclose(in);
-  gzclose(out);
-}
-
 #define SKIP_WITHOUT_LOGS() \
   if (testing::DatasetsDir().empty()) GTEST_SKIP() << testing::kNoDatasets
 
@@ -125,7 +102,7 @@ TEST_F(SessionOnPublicLog, AcesUnderAPerturbedToleranceKeepsItsHeadingThroughThe
 TEST_F(SessionOnPublicLog, IntelWithItsPoseFieldsZeroedIsTrackedWithoutTheOdometryAndSaysSo) {
   SKIP_WITHOUT_LOGS();
   const std::string zeroed = dir_ + "/intel-zeroed.clf.gz";
-  WriteWithZeroedOdometry("intel", zeroed);
+  testing::WriteWithZeroedOdometry("intel", zeroed);
   ExpectAccurate(RunPrefix("intel", 3000, {}, zeroed), 500, 0.025);
   EXPECT_NE(run_.err.find("warning: the log's odometry had not moved"), std::string::npos) << run_;
   const nlohmann::json summary = nlohmann::json::parse(std::ifstream(dir_ + "/intel/summary.json"),

@@ -5,12 +5,16 @@
 #include "scanloc/io/run_summary.hpp"
 
 #include <unistd.h>
+#include <zlib.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <mutex>
 #include <optional>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -95,6 +99,27 @@ std::string DatasetsDir() {
   const char* env = std::getenv("SCANLOC_DATASETS");
   const std::string dir = env != nullptr && *env != '\0' ? env : SCANLOC_DEFAULT_DATASETS;
   return std::filesystem::is_directory(dir) ? dir : "";
+}
+
+void WriteWithZeroedOdometry(const std::string& log, const std::string& path) {
+  gzFile in = gzopen((testing::DatasetsDir() + "/" + log + ".clf.gz").c_str(), "rb");
+  gzFile out = gzopen(path.c_str(), "wb");
+  ASSERT_TRUE(in != nullptr && out != nullptr);
+  std::vector<char> buffer(1 << 16);
+  while (gzgets(in, buffer.data(), static_cast<int>(buffer.size())) != nullptr) {
+    std::istringstream line(buffer.data());
+    std::vector<std::string> fields{std::istream_iterator<std::string>(line), {}};
+    if (fields.size() > 2 && fields[0] == "FLASER") {
+      const std::size_t beams = std::stoul(fields[1]);
+      for (std::size_t f = 2 + beams; f < 8 + beams && f < fields.size(); ++f) fields[f] = "0";
+    }
+    std::string text;
+    for (const std::string& field : fields) text += (text.empty() ? "" : " ") + field;
+    text += "\n";
+    gzwrite(out, text.data(), static_cast<unsigned>(text.size()));
+  }
+  gzclose(in);
+  gzclose(out);
 }
 
 namespace {

@@ -43,6 +43,11 @@ LaserScan ScanFromSimulation(const SimulatedScan& simulated);
 // it does not exist.
 std::string DatasetsDir();
 
+// A copy of the public log `log` (its name in DatasetsDir(), without ".clf.gz") at `path`, gzip
+// compressed, whose FLASER pose fields (x y θ and the odometry's) are all zero: a log whose
+// odometry was never filled in. Fails the test when a file cannot be opened.
+void WriteWithZeroedOdometry(const std::string& log, const std::string& path);
+
 // Why a test that needs the public logs was skipped.
 inline constexpr char kNoDatasets[] =
     "public logs not found: set SCANLOC_DATASETS (default ../shared/datasets)";

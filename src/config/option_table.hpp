@@ -400,6 +400,9 @@ void VisitLocalise(C& c, V& v) {
   v("localise.steady_output", l.steady_output,
     "while ambiguous, the output stays with the hypothesis it followed until that one fails the "
     "rules or another costs min_cost_excess_ratio less at the same scans");
+  v("localise.scan_odometry", l.scan_odometry,
+    "without the log's odometry (none, ignored or frozen), each scan's match on the scan before "
+    "carries the hypotheses as an odometry would");
   v("localise.max_hypotheses", l.max_hypotheses, Bounds{1, 1000}, "hypotheses held at most");
   v("localise.same_posture_m", l.same_posture_m, Bounds{0, 1e3},
     "hypotheses closer than this and same_posture_rad are one, m");

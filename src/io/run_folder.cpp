@@ -139,6 +139,9 @@ void WriteOutcome(JsonWriter& out, const IterationRecord& r) {
   if (r.motion_search) out.Member(keys::kMotionSearch, true);
   if (r.without_odometry) out.Member(keys::kWithoutOdometry, true);
   if (r.odometry_frozen) out.Member(keys::kOdometryFrozen, true);
+  if (r.odometry_from_scans) out.Member(keys::kOdometryFromScans, true);
+  if (r.motion_searched_hypotheses > 0)
+    out.Member(keys::kMotionSearchedHypotheses, r.motion_searched_hypotheses);
 }
 
 // The candidates tried and the refinement kept, when the scan was localised.

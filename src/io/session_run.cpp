@@ -117,7 +117,8 @@ void SessionCounts::Add(const IterationRecord& record) {
   inserted += record.inserted;
   searches += record.search.has_value() && !record.motion_search;
   without_odometry += record.without_odometry;
-  motion_searches += record.motion_search;
+  motion_searches += record.motion_search || record.motion_searched_hypotheses > 0;
+  odometry_from_scans += record.odometry_from_scans;
   odometry_frozen += record.odometry_frozen;
   recoveries += record.recovered;
   refused_corrections += record.beyond_odometry;
@@ -270,6 +271,7 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
       {"localised_without_odometry", c.without_odometry},
       {"motion_searches", c.motion_searches},
       {"odometry_frozen_scans", c.odometry_frozen},
+      {"odometry_from_scans", c.odometry_from_scans},
       {"recoveries", c.recoveries},
       {"refused_corrections", c.refused_corrections},
       {"lost_at_end", c.was_lost},

@@ -113,6 +113,7 @@ std::string SummaryTable(const json& summary, const std::vector<IterationRow>& r
       {"localised_without_odometry", "scans localised without odometry"},
       {"motion_searches", "searches over the motion seen lately"},
       {"odometry_frozen_scans", "scans whose odometry had not moved while the ranges did"},
+      {"odometry_from_scans", "scans moved by their match on the scan before (no odometry)"},
       {"lost_at_end", "lost at the end"},
       {"first_confirmed_scan", "first confirmed scan"},
       {"seconds_to_confirm", "seconds to confirm"},

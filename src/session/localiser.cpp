@@ -112,9 +112,13 @@ Localiser::Localiser(const LocaliserConfig& config, LaserMounting mounting, Line
   }
 }
 
-IterationRecord Localiser::Process(const Iteration& iteration) {
+IterationRecord Localiser::Process(const Iteration& given) {
   const auto start = std::chrono::steady_clock::now();
+  std::optional<Iteration> replaced;
+  bool frozen = false;
+  const Iteration& iteration = UsableOdometry(given, replaced, frozen);
   IterationRecord record = BeginRecord(iteration, count_);
+  record.odometry_frozen = frozen;
   in_force_ = BoundedOptions(record);
   if (iteration.odometry && last_odometry_) {
     const Pose2D increment = Between(*last_odometry_, *iteration.odometry);
@@ -135,8 +139,14 @@ IterationRecord Localiser::Process(const Iteration& iteration) {
   }
   if (search) Search(record, iteration);
   if (!record.skipped && iteration.odometry) last_localised_odometry_ = iteration.odometry;
+  record.without_odometry =
+      odometry_from_scans_ && !record.skipped && record.localisation.has_value();
+  record.odometry_from_scans = record.without_odometry && iteration.odometry.has_value();
   Prune(record);
   Conclude(record);
+  if (search)
+    last_search_output_ = record.posed ? std::optional<Pose2D>(record.T_world_robot) : std::nullopt;
+  LearnMotion(record, iteration);
   if (iteration.odometry) last_odometry_ = iteration.odometry;
   ++count_;
   record.map_points = point_map_.live_size();
@@ -144,16 +154,53 @@ IterationRecord Localiser::Process(const Iteration& iteration) {
   return record;
 }
 
+// `given`, or a copy in `replaced` whose odometry is the scans' own (ScanOdometry; none with
+// localise.scan_odometry off) when the log's is missing, ignored, or frozen (`frozen` says so).
+const Iteration& Localiser::UsableOdometry(const Iteration& given,
+                                           std::optional<Iteration>& replaced, bool& frozen) {
+  frozen = !config_.session.ignore_odometry && frozen_.SetAside(given);
+  const bool from_scans = config_.session.ignore_odometry || frozen || !given.odometry;
+  if (from_scans) {
+    replaced = given;
+    replaced->odometry.reset();
+    if (config_.localiser.scan_odometry) replaced->odometry = scan_odometry_.Next(given.scan);
+  }
+  const Iteration& iteration = from_scans ? *replaced : given;
+  if (from_scans != odometry_from_scans_) {
+    // The other odometry's poses do not compare with this one's: no increment at this scan, and
+    // the travel towards the next global search counts from here.
+    last_odometry_.reset();
+    last_localised_odometry_.reset();
+    if (last_search_odometry_) last_search_odometry_ = iteration.odometry;
+    odometry_from_scans_ = from_scans;
+  }
+  return iteration;
+}
+
+// Without odometry, the motion between consecutive confirmed postures sizes the motion search.
+void Localiser::LearnMotion(const IterationRecord& record, const Iteration& iteration) {
+  if (record.validated && last_confirmed_ && SearchesMotion(iteration))
+    motion_.Add(Between(*last_confirmed_, record.T_world_robot));
+  if (record.validated)
+    last_confirmed_ = record.T_world_robot;
+  else if (!record.skipped)
+    last_confirmed_.reset();
+}
+
 // The whole map is searched when no hypothesis is held, when a confirmed posture was just lost,
 // and, until one is confirmed, each time the odometry moved or turned enough since the last search.
 bool Localiser::SearchDue(const Iteration& iteration) const {
   if (hypotheses_.empty() || search_due_) return true;
-  // Without odometry there is no travel to count: search until a posture is confirmed.
-  if (!last_search_odometry_ || !iteration.odometry) return !confirmed_;
-  const Pose2D since = Between(*last_search_odometry_, *iteration.odometry);
+  if (confirmed_) return false;
+  // Without odometry the travel is the output posture's, since the one output at the last search.
+  const std::optional<Pose2D>& from =
+      iteration.odometry ? last_search_odometry_ : last_search_output_;
+  if (!from) return true;
+  const Pose2D since =
+      Between(*from, iteration.odometry ? *iteration.odometry : hypotheses_.front().T_world_robot);
   const LocaliserOptions& o = config_.localiser;
-  return !confirmed_ && (std::hypot(since.x_m, since.y_m) >= o.research_distance_m ||
-                         std::abs(since.yaw_rad) >= o.research_turn_rad);
+  return std::hypot(since.x_m, since.y_m) >= o.research_distance_m ||
+         std::abs(since.yaw_rad) >= o.research_turn_rad;
 }
 
 // The whole map searched; every refined candidate the rules validate becomes a hypothesis. The
@@ -199,13 +246,9 @@ void Localiser::Track(IterationRecord& record, const Iteration& iteration) {
                            config_.session.heading_candidates_min_turn_rad;
   std::vector<LocalisationResult> results;
   for (Hypothesis& h : hypotheses_) {
-    auto candidates =
-        PredictionCandidates(h.T_world_robot, {}, turning, mounting_, config_.session);
-    const double bound_m = BoundAt(h.T_world_robot);  // one place: one bound for all
-    for (Candidate& c : candidates) c.max_expect_value_m = bound_m;
-    results.push_back(Localise(View(), iteration.scan, candidates, mounting_, in_force_,
-                               PredictionRefinePolicy(config_.session),
-                               config_.session.max_refined_candidates));
+    bool searched = false;
+    results.push_back(LocaliseHypothesis(h, iteration, turning, searched));
+    record.motion_searched_hypotheses += searched;
     h.verdict = Verdict::kNoValidPairs;
     if (const RankedCandidate* kept = results.back().Kept())
       TakeRefinement(h, *kept, count_, in_force_);
@@ -231,6 +274,42 @@ void Localiser::Track(IterationRecord& record, const Iteration& iteration) {
   record.verdict = kept ? kept->verdict : Verdict::kNoValidPairs;
   if (kept && !hypotheses_[order.front()].validated && kept->verdict == Verdict::kValid)
     record.verdict = Verdict::kHighCost;  // valid alone, but far costlier than another held
+}
+
+// One hypothesis localised from its own prediction; without odometry, searched for around it when
+// the rules confirm nothing there or the refinement moved beyond the minima (NeedsMotionSearch).
+LocalisationResult Localiser::LocaliseHypothesis(const Hypothesis& h, const Iteration& iteration,
+                                                 bool turning, bool& searched) const {
+  std::vector<Candidate> candidates =
+      PredictionCandidates(h.T_world_robot, {}, turning, mounting_, config_.session);
+  const double bound_m = BoundAt(h.T_world_robot);  // one place: one bound for all
+  for (Candidate& c : candidates) c.max_expect_value_m = bound_m;
+  auto localise = [&] {
+    return Localise(View(), iteration.scan, candidates, mounting_, in_force_,
+                    PredictionRefinePolicy(config_.session),
+                    config_.session.max_refined_candidates);
+  };
+  LocalisationResult result = localise();
+  searched = SearchesMotion(iteration) &&
+             NeedsMotionSearch(result, h.T_world_robot, config_.session.motion_search);
+  if (!searched) return result;
+  const RecoveryOptions& r = config_.session.recovery;
+  const SearchWindow window =
+      motion_.Window(mounting_.LaserPose(h.T_world_robot), r.min_half_width_m, r.min_half_yaw_rad,
+                     r.max_half_width_m, r.max_half_yaw_rad);
+  const WideSearchResult search = WideSearch(View(), iteration.scan, window, r.search);
+  for (std::size_t i = 0; i < search.candidates.size(); ++i)
+    candidates.push_back({mounting_.RobotPose(search.candidates[i].T_world_laser),
+                          "search" + std::to_string(i), bound_m});
+  LocalisationResult again = localise();
+  again.evaluate_s += result.evaluate_s;
+  again.refine_s += result.refine_s;
+  return again;
+}
+
+// Without odometry (and with the motion search on) a hypothesis is searched for around itself.
+bool Localiser::SearchesMotion(const Iteration& iteration) const {
+  return !iteration.odometry && count_ > 0 && config_.session.motion_search.enabled;
 }
 
 // Discards the hypotheses the rules stopped validating or another out-costed (the reasons go into

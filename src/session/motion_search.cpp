@@ -63,6 +63,15 @@ bool FrozenOdometry::SetAside(const Iteration& given) {
   return found_frozen_;
 }
 
+bool NeedsMotionSearch(const LocalisationResult& result, const Pose2D& from,
+                       const MotionSearchOptions& options) {
+  const RankedCandidate* kept = result.Kept();
+  if (!result.validated() || kept == nullptr) return true;
+  const Pose2D moved = Between(from, kept->T_world_robot);
+  return std::hypot(moved.x_m, moved.y_m) > options.min_half_width_m ||
+         std::abs(NormalizeAngle(moved.yaw_rad)) > options.min_half_yaw_rad;
+}
+
 const Iteration& WithoutOdometryIf(bool strip, const Iteration& given,
                                    std::optional<Iteration>& stripped) {
   if (!strip || !given.odometry) return given;

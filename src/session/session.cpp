@@ -146,14 +146,6 @@ const Iteration& Session::UsableOdometry(const Iteration& given, std::optional<I
   return WithoutOdometryIf(options_.ignore_odometry || frozen, given, stripped);
 }
 
-bool Session::NeedsMotionSearch(const IterationRecord& record) const {
-  const RankedCandidate* kept = record.Kept();
-  if (!record.localisation->validated() || kept == nullptr) return true;
-  const Pose2D moved = Between(record.prediction, kept->T_world_robot);
-  return std::hypot(moved.x_m, moved.y_m) > options_.motion_search.min_half_width_m ||
-         std::abs(NormalizeAngle(moved.yaw_rad)) > options_.motion_search.min_half_yaw_rad;
-}
-
 bool Session::SearchesMotion(const Iteration& iteration) const {
   return !iteration.odometry && count_ > 0 && options_.motion_search.enabled;
 }
@@ -257,7 +249,8 @@ void Session::LocaliseInto(IterationRecord& record, const Iteration& iteration) 
   // Without odometry the map is searched when the last posture's candidates found nothing the
   // rules confirm, or only by moving farther than the search's minima (a dense log's scans
   // rarely need it, a sparse log's, 0.6–1 m apart, always do).
-  if (searches_motion && !was_lost && NeedsMotionSearch(record)) {
+  if (searches_motion && !was_lost &&
+      NeedsMotionSearch(*record.localisation, record.prediction, options_.motion_search)) {
     MotionSearchWindow(record);
     Search(record, iteration.scan, search);
     const LocalisationResult first = std::move(*record.localisation);

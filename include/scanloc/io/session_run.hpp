@@ -40,7 +40,8 @@ struct SessionCounts {
   // was searched for over the motion seen lately, and those whose odometry had not moved since the
   // first scan while the ranges did.
   std::size_t without_odometry = 0, motion_searches = 0, odometry_frozen = 0;
-  bool was_lost = false;  // lost after the last scan
+  std::size_t odometry_from_scans = 0;  // scans given the scans' own odometry (ScanOdometry)
+  bool was_lost = false;                // lost after the last scan
   // Localisation on a saved map: the first scan whose posture was confirmed (its index and time),
   // the scans with several hypotheses, the most held at once, the scans without a posture.
   bool localisation = false;  // the records carry a localisation's state

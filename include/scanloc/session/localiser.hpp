@@ -9,6 +9,10 @@
 // is left and the rules validated it confirm_after scans in a row; while several are held the
 // output says "ambiguous" and lists them. A confirmed posture that the rules stop validating (a
 // robot carried elsewhere) is lost: it is held on as one hypothesis among those a new search finds.
+// Without odometry (none in the log, session.ignore_odometry, or odometry frozen while the scans
+// move: motion_search.hpp) each hypothesis stays where it was and, when the rules confirm nothing
+// there or the refinement had to move beyond the minima, the map is searched around it over the
+// motion the confirmed posture showed lately (the recovery's initial window before).
 
 #include <optional>
 #include <string>
@@ -17,6 +21,7 @@
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/maps/point_map.hpp"
 #include "scanloc/session/place_bound.hpp"
+#include "scanloc/session/scan_odometry.hpp"
 #include "scanloc/session/scan_processor.hpp"
 #include "scanloc/session/session.hpp"
 
@@ -68,6 +73,11 @@ struct LocaliserOptions {
   // hypothesis_evidence.hpp): pairs matched tighter beyond chance by at least
   // min_cost_excess_ratio, and a truncated mean lower on average too.
   bool drop_outmatched = true;
+  // Without the log's odometry (none, session.ignore_odometry, or frozen), the scans' own:
+  // each scan matched on the scan before (ScanOdometry) carries the hypotheses as a wheel
+  // odometry would. Off: each hypothesis stays where it was and is searched for around itself
+  // when the rules confirm nothing there (the motion search alone).
+  bool scan_odometry = true;
   int max_hypotheses = 8;  // the best by confirmations, then cost, are kept
   // Hypotheses closer than both of these are one (the better kept).
   double same_posture_m = 0.3;
@@ -100,7 +110,13 @@ class Localiser : public ScanProcessor {
 
  private:
   MapView View() const { return {line_map_.empty() ? nullptr : &line_map_, &point_map_}; }
+  const Iteration& UsableOdometry(const Iteration& given, std::optional<Iteration>& replaced,
+                                  bool& frozen);
+  void LearnMotion(const IterationRecord& record, const Iteration& iteration);
   bool SearchDue(const Iteration& iteration) const;
+  bool SearchesMotion(const Iteration& iteration) const;
+  LocalisationResult LocaliseHypothesis(const Hypothesis& h, const Iteration& iteration,
+                                        bool turning, bool& searched) const;
   void Search(IterationRecord& record, const Iteration& iteration);
   void Track(IterationRecord& record, const Iteration& iteration);
   void Prune(IterationRecord& record);
@@ -124,9 +140,16 @@ class Localiser : public ScanProcessor {
   std::optional<Pose2D> last_odometry_;
   std::optional<Pose2D> last_localised_odometry_;
   std::optional<Pose2D> last_search_odometry_;
+  std::optional<Pose2D> last_search_output_;  // without odometry: the posture output there
   std::optional<Pose2D> last_output_;  // the posture output at the scan before, carried along
   bool search_due_ = false;            // a confirmed posture was just lost
   LikelihoodField search_field_;       // the storage of every global search's field
+  FrozenOdometry frozen_{config_.session.motion_search.frozen_odometry_range_change_m};
+  // Without the log's odometry, the scans' own (scan_odometry.hpp).
+  ScanOdometry scan_odometry_{point_map_.options(), config_.localisation, mounting_};
+  bool odometry_from_scans_ = false;
+  MotionWindow motion_{config_.session.motion_search};
+  std::optional<Pose2D> last_confirmed_;  // the confirmed posture at the scan before, if any
 };
 
 }  // namespace scanloc

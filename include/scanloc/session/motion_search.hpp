@@ -17,6 +17,7 @@
 #include "scanloc/geometry/laser_scan.hpp"
 #include "scanloc/geometry/pose2d.hpp"
 #include "scanloc/session/iteration.hpp"
+#include "scanloc/session/localisation.hpp"
 #include "scanloc/session/wide_search.hpp"
 
 namespace scanloc {
@@ -75,6 +76,11 @@ class FrozenOdometry {
   bool moved_ = false;         // since the first scan's
   bool found_frozen_ = false;  // not moved while the ranges did
 };
+
+// Whether a scan localised from the last posture `from` (no odometry to predict with) is searched
+// for: the rules confirmed nothing there, or the kept refinement had to move beyond the minima.
+bool NeedsMotionSearch(const LocalisationResult& result, const Pose2D& from,
+                       const MotionSearchOptions& options);
 
 // `given`, or a copy of it in `stripped` without its odometry when `strip`.
 const Iteration& WithoutOdometryIf(bool strip, const Iteration& given,

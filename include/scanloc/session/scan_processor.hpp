@@ -77,6 +77,11 @@ struct IterationRecord {
   bool motion_search = false;
   // Localised with no odometry to predict from (none in the log, ignored, or frozen).
   bool without_odometry = false;
+  // Localisation on a saved map without the log's odometry: the odometry was the scan's match on
+  // the scan before (ScanOdometry), and how many hypotheses were searched for around themselves
+  // over the motion seen lately (where that match failed).
+  bool odometry_from_scans = false;
+  std::size_t motion_searched_hypotheses = 0;
   // The log's odometry had not moved since the first scan while the ranges did: it was not used
   // for this scan (session.motion_search.frozen_odometry_range_change_m).
   bool odometry_frozen = false;

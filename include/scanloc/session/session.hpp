@@ -175,9 +175,6 @@ class Session : public ScanProcessor {
                                   bool& frozen);
   // A localised scan with no odometry to predict from: searched for over the motion seen lately.
   bool SearchesMotion(const Iteration& iteration) const;
-  // Whether such a scan's localisation from the last posture leaves the map to be searched: the
-  // rules confirmed nothing, or the refinement moved beyond the search's minima.
-  bool NeedsMotionSearch(const IterationRecord& record) const;
   MapView View() const;
   Pose2D Predict(const Iteration& iteration) const;
   bool ShouldLocalise(const Iteration& iteration) const;
