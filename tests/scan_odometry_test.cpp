@@ -95,5 +95,31 @@ TEST(ScanOdometry, AScanWithoutValidRangesGivesNoPoseAndTheOdometryGoesOnAfterIt
   EXPECT_EQ(odometry.failed(), 2u);
 }
 
+// After Reset (scans the odometry did not see came in between) the next scan keeps the pose, and
+// the one after it moves from there by its own step.
+TEST(ScanOdometry, AfterAResetTheNextScanKeepsThePoseAndTheStepsGoOnFromIt) {
+  LineMap world = testing::Classroom();
+  world.segments.push_back({{2.4, 0.6}, {3.6, 0.6}});
+  std::mt19937 rng(6);
+  ScanOdometry odometry = DefaultOdometry();
+  Pose2D truth{1.5, 2.0, 0.3};
+  ASSERT_TRUE(odometry.Next(SimulateLaser(world, truth, Laser(20.0), rng)).has_value());
+  truth = truth * Pose2D{0.05, 0.0, 0.0};
+  const std::optional<Pose2D> before = odometry.Next(SimulateLaser(world, truth, Laser(20.0), rng));
+  ASSERT_TRUE(before.has_value());
+  odometry.Reset();
+  truth = truth * Pose2D{0.6, 0.0, 0.4};  // unseen by the odometry
+  const std::optional<Pose2D> kept = odometry.Next(SimulateLaser(world, truth, Laser(20.0), rng));
+  ASSERT_TRUE(kept.has_value());
+  EXPECT_EQ(kept->x_m, before->x_m);
+  EXPECT_EQ(kept->yaw_rad, before->yaw_rad);
+  truth = truth * Pose2D{0.05, 0.0, 0.02};
+  const std::optional<Pose2D> next = odometry.Next(SimulateLaser(world, truth, Laser(20.0), rng));
+  ASSERT_TRUE(next.has_value());
+  const Pose2D step = Between(*kept, *next);
+  EXPECT_NEAR(step.x_m, 0.05, 0.01);
+  EXPECT_NEAR(step.yaw_rad, 0.02, 0.003);
+}
+
 }  // namespace
 }  // namespace scanloc

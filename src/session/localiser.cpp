@@ -161,6 +161,9 @@ const Iteration& Localiser::UsableOdometry(const Iteration& given,
   frozen = !config_.session.ignore_odometry && frozen_.SetAside(given);
   const bool from_scans = config_.session.ignore_odometry || frozen || !given.odometry;
   if (from_scans) {
+    // Scans that had the log's odometry in between were not matched: the scan before is not the
+    // last one the scans' odometry saw.
+    if (!odometry_from_scans_) scan_odometry_.Reset();
     replaced = given;
     replaced->odometry.reset();
     if (config_.localiser.scan_odometry) replaced->odometry = scan_odometry_.Next(given.scan);

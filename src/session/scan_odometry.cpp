@@ -7,7 +7,7 @@ namespace scanloc {
 std::optional<Pose2D> ScanOdometry::Next(const LaserScan& scan) {
   std::optional<Pose2D> pose;
   if (!previous_) {
-    pose = pose_;  // the origin
+    pose = pose_;  // the origin, or where the odometry was when reset
   } else if (previous_->live_size() > 0) {
     const MapView view{nullptr, &*previous_};
     const LocalisationResult result = Localise(view, scan, {{Pose2D(), "still"}}, mounting_,

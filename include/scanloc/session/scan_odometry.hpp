@@ -7,6 +7,7 @@
 // behind, where without any odometry every hypothesis could follow whatever motion fits it best.
 // A scan the match does not validate gives no pose (the caller searches around its hypotheses,
 // motion_search.hpp), and the next increment starts from it.
+// The first scan's pose is the origin; after Reset, the next scan keeps the pose of the last one.
 
 #include <optional>
 
@@ -26,6 +27,10 @@ class ScanOdometry {
   // The robot's odometry pose at `scan` (the first scan's is the origin), or nothing when the
   // match on the scan before is not validated (or there is no valid range).
   std::optional<Pose2D> Next(const LaserScan& scan);
+
+  // Forgets the scan before (its successor is not the next scan given): the next scan keeps the
+  // pose, and the increments go on from it.
+  void Reset() { previous_.reset(); }
 
   std::size_t matched() const { return matched_; }
   std::size_t failed() const { return failed_; }
