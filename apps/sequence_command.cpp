@@ -73,7 +73,7 @@ void PrintWarnings(const nlohmann::json& summary) {
     std::cerr << "warning: the log's odometry had not moved since the first scan while the scans "
                  "did: "
               << frozen
-              << " scans were localised without it (are the log's odometry fields filled in?)\n";
+              << " scans were taken without it (are the log's odometry fields filled in?)\n";
   const std::size_t reversed = summary["odometry_reversed_increments"].get<std::size_t>();
   if (reversed > 0)
     std::cout << "odometry: " << reversed
