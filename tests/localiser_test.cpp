@@ -431,6 +431,72 @@ TEST(Localiser, CarriedElsewhereItIsLostThenConfirmsTheNewPlaceWithinThirtyScans
   EXPECT_LT(ErrorM(localiser.hypotheses().front().T_world_robot, drive.truth.back()), 0.05);
 }
 
+// Pillars of 0.4 m every 3 m in the open: no stretch of wall, nothing like the classroom.
+LineMap PillarField() {
+  LineMap map;
+  for (int i = -3; i <= 3; ++i)
+    for (int j = -3; j <= 3; ++j)
+      AddBox(map, 3.0 * i - 0.2, 3.0 * j - 0.2, 3.0 * i + 0.2, 3.0 * j + 0.2);
+  return map;
+}
+
+// A localiser on the classroom while the robot drives through a pillar field, which the map does
+// not contain: how many scans began with no hypothesis held, and how many of those searched.
+struct OffTheMap {
+  int holding_nothing = 0;
+  int searched = 0;
+  int held = 0;  // hypotheses held, summed over the scans
+};
+OffTheMap SearchesOffTheMap(const Drive& drive, const LocaliserConfig& config) {
+  Localiser localiser(config, {}, testing::Classroom(), PointMap{});
+  OffTheMap run;
+  for (const Iteration& iteration : drive.iterations) {
+    const bool nothing = localiser.hypotheses().empty();
+    const IterationRecord r = localiser.Process(iteration);
+    run.holding_nothing += nothing;
+    run.searched += nothing && r.search.has_value();
+    run.held += static_cast<int>(r.hypotheses.size());
+  }
+  return run;
+}
+
+TEST(Localiser, HoldingNothingItSearchesTheMapAgainOnlyOnceTheOdometryMovedHalfAMetre) {
+  const LineMap world = PillarField();
+  const Pose2D start{-1.5, 1.5, 0.3};
+  // Standing still: the same view, searched once.
+  const Drive still =
+      DriveThrough(world, start, 30, 12.0, 0.0, -1, {}, [](int) { return Pose2D{}; });
+  OffTheMap run = SearchesOffTheMap(still, DefaultConfig());
+  EXPECT_EQ(run.held, 0) << "a hypothesis was found: the test shows nothing";
+  EXPECT_EQ(run.holding_nothing, 30);
+  EXPECT_EQ(run.searched, 1);
+  // 60 steps of 5 cm (5.1 cm by the odometry): at scans 0, 10, 20, 30, 40 and 50.
+  const Drive moving = DriveThrough(world, start, 60, 12.0);
+  run = SearchesOffTheMap(moving, DefaultConfig());
+  EXPECT_EQ(run.held, 0);
+  EXPECT_EQ(run.searched, 6);
+  // A turn on the spot, 2° per scan: again after 0.8 rad (23 scans), at scans 0 and 23.
+  const Drive turning = DriveThrough(world, start, 30, 12.0, 0.0, -1, {}, [](int) {
+    return Pose2D{0.0, 0.0, 2.0 * M_PI / 180.0};
+  });
+  run = SearchesOffTheMap(turning, DefaultConfig());
+  EXPECT_EQ(run.held, 0);
+  EXPECT_EQ(run.searched, 2);
+  // Without any odometry (the log's missing, the scans' own off) the travel is unknown: every
+  // scan that holds nothing searches.
+  Drive blind = moving;
+  for (Iteration& iteration : blind.iterations) iteration.odometry.reset();
+  LocaliserConfig no_scan_odometry = DefaultConfig();
+  no_scan_odometry.localiser.scan_odometry = false;
+  run = SearchesOffTheMap(blind, no_scan_odometry);
+  EXPECT_GE(run.holding_nothing, 10);
+  EXPECT_EQ(run.searched, run.holding_nothing);
+  // With the scans' own odometry, they search by the scans' travel.
+  run = SearchesOffTheMap(blind, DefaultConfig());
+  EXPECT_GE(run.holding_nothing, 10);
+  EXPECT_LE(run.searched, run.holding_nothing / 3);
+}
+
 TEST(Localiser, AnEmptyMapIsRefused) {
   EXPECT_THROW(Localiser(DefaultConfig(), {}, {}, PointMap{}), std::invalid_argument);
 }

@@ -372,8 +372,8 @@ void VisitLocalise(C& c, V& v) {
   v("localise.confirm_after", l.confirm_after, Bounds{1, 1e6},
     "scans in a row the rules must validate the only hypothesis left before it is confirmed");
   v("localise.research_distance_m", l.research_distance_m, Bounds{0, 1e3},
-    "until a posture is confirmed, the map is searched again after the odometry moved this far, "
-    "m ...");
+    "until a posture is confirmed (and while no hypothesis is held), the map is searched again "
+    "after the odometry moved this far, m ...");
   v("localise.research_turn_rad", l.research_turn_rad, Bounds{0, 2 * M_PI},
     "... or turned this, rad");
   v("localise.drop_after_unconfirmed", l.drop_after_unconfirmed, Bounds{1, 1e6},

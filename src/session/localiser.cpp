@@ -190,15 +190,18 @@ void Localiser::LearnMotion(const IterationRecord& record, const Iteration& iter
     last_confirmed_.reset();
 }
 
-// The whole map is searched when no hypothesis is held, when a confirmed posture was just lost,
-// and, until one is confirmed, each time the odometry moved or turned enough since the last search.
+// The whole map is searched when a confirmed posture was just lost and, until one is confirmed,
+// each time the odometry moved or turned enough since the last search: a new view may show a
+// place the last one missed, the same view would not. While no hypothesis is held that is the
+// log's odometry or the scans' own; without either (the scans' match on the scan before failed)
+// the travel is unknown and every scan searches.
 bool Localiser::SearchDue(const Iteration& iteration) const {
-  if (hypotheses_.empty() || search_due_) return true;
-  if (confirmed_) return false;
+  if (search_due_) return true;
+  if (confirmed_ && !hypotheses_.empty()) return false;
   // Without odometry the travel is the output posture's, since the one output at the last search.
   const std::optional<Pose2D>& from =
       iteration.odometry ? last_search_odometry_ : last_search_output_;
-  if (!from) return true;
+  if (!from || (hypotheses_.empty() && !iteration.odometry)) return true;
   const Pose2D since =
       Between(*from, iteration.odometry ? *iteration.odometry : hypotheses_.front().T_world_robot);
   const LocaliserOptions& o = config_.localiser;

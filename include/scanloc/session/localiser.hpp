@@ -33,8 +33,10 @@ struct LocaliserOptions {
   // Scans in a row the rules must validate the only hypothesis left before it is confirmed; and
   // a global search made after it was found, once the robot moved, must have found no other.
   int confirm_after = 3;
-  // Until a posture is confirmed, the whole map is searched again once the odometry moved this
-  // far or turned this much since the last search (a new view may show a place missed before).
+  // Until a posture is confirmed, and while no hypothesis is held, the whole map is searched
+  // again once the odometry moved this far or turned this much since the last search (a new view
+  // may show a place missed before; the same view would not). Without odometry that could tell
+  // the travel, every scan that holds nothing searches.
   double research_distance_m = 0.5;
   double research_turn_rad = 0.8;
   // A hypothesis not yet confirmed is discarded after this many unconfirmed scans in a row; a
