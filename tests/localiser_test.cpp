@@ -460,7 +460,7 @@ OffTheMap SearchesOffTheMap(const Drive& drive, const LocaliserConfig& config) {
   return run;
 }
 
-TEST(Localiser, HoldingNothingItSearchesTheMapAgainOnlyOnceTheOdometryMovedHalfAMetre) {
+TEST(Localiser, HoldingNothingItSearchesTheMapAgainOnlyOnceTheRobotMovedOrItsViewChanged) {
   const LineMap world = PillarField();
   const Pose2D start{-1.5, 1.5, 0.3};
   // Standing still: the same view, searched once.
@@ -482,15 +482,21 @@ TEST(Localiser, HoldingNothingItSearchesTheMapAgainOnlyOnceTheOdometryMovedHalfA
   run = SearchesOffTheMap(turning, DefaultConfig());
   EXPECT_EQ(run.held, 0);
   EXPECT_EQ(run.searched, 2);
-  // Without any odometry (the log's missing, the scans' own off) the travel is unknown: every
-  // scan that holds nothing searches.
-  Drive blind = moving;
-  for (Iteration& iteration : blind.iterations) iteration.odometry.reset();
+  // Without any odometry (the log's missing, the scans' own off) the view itself must change:
+  // standing still, one search; driving, again once the ranges moved (by their median).
   LocaliserConfig no_scan_odometry = DefaultConfig();
   no_scan_odometry.localiser.scan_odometry = false;
+  Drive blind_still = still;
+  for (Iteration& iteration : blind_still.iterations) iteration.odometry.reset();
+  run = SearchesOffTheMap(blind_still, no_scan_odometry);
+  EXPECT_EQ(run.holding_nothing, 30);
+  EXPECT_EQ(run.searched, 1);
+  Drive blind = moving;
+  for (Iteration& iteration : blind.iterations) iteration.odometry.reset();
   run = SearchesOffTheMap(blind, no_scan_odometry);
   EXPECT_GE(run.holding_nothing, 10);
-  EXPECT_EQ(run.searched, run.holding_nothing);
+  EXPECT_GE(run.searched, 3);
+  EXPECT_LE(run.searched, run.holding_nothing / 2);
   // With the scans' own odometry, they search by the scans' travel.
   run = SearchesOffTheMap(blind, DefaultConfig());
   EXPECT_GE(run.holding_nothing, 10);

@@ -226,7 +226,8 @@ void VisitSession(C& c, V& v) {
     Bounds{0, 1e3},
     "while the odometry has not moved since the first scan, a scan whose ranges differ from the "
     "first scan's by more than this (median over the beams) sets the odometry aside until it "
-    "moves, m; 0: the odometry is always believed");
+    "moves, m (and localise, holding nothing without odometry, searches again only once the "
+    "ranges moved this much since the last search); 0: the odometry is always believed");
 }
 
 template <class C, class V>

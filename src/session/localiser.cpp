@@ -194,19 +194,29 @@ void Localiser::LearnMotion(const IterationRecord& record, const Iteration& iter
 // each time the odometry moved or turned enough since the last search: a new view may show a
 // place the last one missed, the same view would not. While no hypothesis is held that is the
 // log's odometry or the scans' own; without either (the scans' match on the scan before failed)
-// the travel is unknown and every scan searches.
+// the view itself must have changed: ranges that moved as a session tells a frozen odometry.
 bool Localiser::SearchDue(const Iteration& iteration) const {
   if (search_due_) return true;
   if (confirmed_ && !hypotheses_.empty()) return false;
+  if (hypotheses_.empty() && !iteration.odometry) return ViewChanged(iteration.scan);
   // Without odometry the travel is the output posture's, since the one output at the last search.
   const std::optional<Pose2D>& from =
       iteration.odometry ? last_search_odometry_ : last_search_output_;
-  if (!from || (hypotheses_.empty() && !iteration.odometry)) return true;
+  if (!from) return true;
   const Pose2D since =
       Between(*from, iteration.odometry ? *iteration.odometry : hypotheses_.front().T_world_robot);
   const LocaliserOptions& o = config_.localiser;
   return std::hypot(since.x_m, since.y_m) >= o.research_distance_m ||
          std::abs(since.yaw_rad) >= o.research_turn_rad;
+}
+
+// Whether `scan`'s ranges differ from those of the scan last searched by more than the frozen
+// odometry's test allows a robot standing still (true when that cannot be told).
+bool Localiser::ViewChanged(const LaserScan& scan) const {
+  const double still_m = config_.session.motion_search.frozen_odometry_range_change_m;
+  if (!last_search_scan_ || still_m <= 0.0) return true;
+  const std::optional<double> change_m = MedianRangeChange(*last_search_scan_, scan);
+  return !change_m || *change_m > still_m;
 }
 
 // The whole map searched; every refined candidate the rules validate becomes a hypothesis. The
@@ -215,6 +225,7 @@ void Localiser::Search(IterationRecord& record, const Iteration& iteration) {
   const LaserScan& scan = iteration.scan;
   search_due_ = false;
   last_search_odometry_ = iteration.odometry;
+  last_search_scan_ = scan;
   for (Hypothesis& h : hypotheses_) ++h.searches;
   record.search_window = WholeMapWindow(View());
   record.search =

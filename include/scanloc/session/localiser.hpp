@@ -36,7 +36,8 @@ struct LocaliserOptions {
   // Until a posture is confirmed, and while no hypothesis is held, the whole map is searched
   // again once the odometry moved this far or turned this much since the last search (a new view
   // may show a place missed before; the same view would not). Without odometry that could tell
-  // the travel, every scan that holds nothing searches.
+  // the travel, holding nothing, the scan's ranges must have moved since the last search's by
+  // more than session.frozen_odometry_range_change_m (the median over the beams).
   double research_distance_m = 0.5;
   double research_turn_rad = 0.8;
   // A hypothesis not yet confirmed is discarded after this many unconfirmed scans in a row; a
@@ -116,6 +117,7 @@ class Localiser : public ScanProcessor {
                                   bool& frozen);
   void LearnMotion(const IterationRecord& record, const Iteration& iteration);
   bool SearchDue(const Iteration& iteration) const;
+  bool ViewChanged(const LaserScan& scan) const;
   bool SearchesMotion(const Iteration& iteration) const;
   LocalisationResult LocaliseHypothesis(const Hypothesis& h, const Iteration& iteration,
                                         bool turning, bool& searched) const;
@@ -143,6 +145,7 @@ class Localiser : public ScanProcessor {
   std::optional<Pose2D> last_localised_odometry_;
   std::optional<Pose2D> last_search_odometry_;
   std::optional<Pose2D> last_search_output_;  // without odometry: the posture output there
+  std::optional<LaserScan> last_search_scan_;
   std::optional<Pose2D> last_output_;  // the posture output at the scan before, carried along
   bool search_due_ = false;            // a confirmed posture was just lost
   LikelihoodField search_field_;       // the storage of every global search's field

@@ -31,7 +31,8 @@ struct MotionSearchOptions {
   // While the odometry has not moved since the first scan, a scan whose ranges differ from the
   // first scan's by more than this (the median over the beams valid in both) means the robot moved
   // without it (FrozenOdometry): a robot standing still sees the same ranges. 0: the odometry is
-  // always believed.
+  // always believed. `scanloc localise` holding nothing without odometry searches the map again
+  // only once the ranges moved this much since the last search (0: at every scan).
   double frozen_odometry_range_change_m = 0.1;
   // Throws std::invalid_argument naming the first option out of its domain.
   void Validate() const;
