@@ -2,7 +2,8 @@
 # The five sparse Radish logs of other buildings (../shared/datasets/radish, see its README), each
 # with noisy synthetic odometry and with perfect odometry: the default session on every one, scored
 # on all relations and on the local ones (scans ≤ 15 s apart), beside the odometry alone (every
-# scan takes the prediction: the localisation gate never opens). Prints the table of issue 15.
+# scan takes the prediction: the localisation gate never opens). Prints the table of issue 15, then
+# each session's cost beside its error (CPU, wall, throughput on CPU, peak memory: issue 19).
 #   scripts/radish-sessions.sh [OUT_DIR [SESSION_ARGS...]]   (default: build/radish; logs in
 #   $SCANLOC_DATASETS/radish). SESSION_ARGS go to every session but the odometry-only one, e.g.
 #   --set recovery.lost_after_unconfirmed=2, to measure a configuration on all five logs.
@@ -51,4 +52,24 @@ for log in ["seattle", "orebro", "fhw", "edmonton", "acapulco"]:
              local_max(ev(log, "noisy", "local.relations")), mm(ev(log, "exact", "relations")),
              local_max(ev(log, "exact", "local.relations"))]
     print(f"| {log} | " + " | ".join(cells) + " |")
+# What each session cost beside its error: the whole process's CPU (user + system, from
+# /usr/bin/time), the session's wall time and peak memory (summary.json), and the log's span over
+# that CPU time (issue 19's throughput).
+print()
+print("| log | odometry | mean [m] | CPU [s] | wall [s] | × real time on CPU | peak memory [MB] |")
+print("|---|---|---|---|---|---|---|")
+for log in ["seattle", "orebro", "fhw", "edmonton", "acapulco"]:
+    for kind in ["noisy", "exact"]:
+        try:
+            s = json.load(open(f"{out}/{log}-{kind}/summary.json"))
+            user, system = map(float, open(f"{out}/{log}-{kind}.cpu").read().split()[-2:])
+        except Exception:
+            print(f"| {log} | {kind} | failed | | | | |")
+            continue
+        cpu = user + system
+        span = s["times_real_time_on_cpu"] * s["cpu_time_s"]
+        e = ev(log, kind, "relations")
+        mean = "failed" if e is None else f"{e['mean']:.3f}"
+        print(f"| {log} | {kind} | {mean} | {cpu:.2f} | {s['wall_time_s']:.2f} "
+              f"| {span / cpu:.0f} | {s['peak_resident_mb']:.1f} |")
 PY
