@@ -182,7 +182,8 @@ const Iteration& Localiser::UsableOdometry(const Iteration& given,
 
 // Without odometry, the motion between consecutive confirmed postures sizes the motion search.
 void Localiser::LearnMotion(const IterationRecord& record, const Iteration& iteration) {
-  if (record.validated && last_confirmed_ && SearchesMotion(iteration))
+  if (record.validated && last_confirmed_ &&
+      SearchesMotion(iteration, count_, config_.session.motion_search))
     motion_.Add(Between(*last_confirmed_, record.T_world_robot));
   if (record.validated)
     last_confirmed_ = record.T_world_robot;
@@ -307,13 +308,11 @@ LocalisationResult Localiser::LocaliseHypothesis(const Hypothesis& h, const Iter
                     config_.session.max_refined_candidates);
   };
   LocalisationResult result = localise();
-  searched = SearchesMotion(iteration) &&
+  searched = SearchesMotion(iteration, count_, config_.session.motion_search) &&
              NeedsMotionSearch(result, h.T_world_robot, config_.session.motion_search);
   if (!searched) return result;
   const RecoveryOptions& r = config_.session.recovery;
-  const SearchWindow window =
-      motion_.Window(mounting_.LaserPose(h.T_world_robot), r.min_half_width_m, r.min_half_yaw_rad,
-                     r.max_half_width_m, r.max_half_yaw_rad);
+  const SearchWindow window = motion_.Window(mounting_.LaserPose(h.T_world_robot), r);
   const WideSearchResult search = WideSearch(View(), iteration.scan, window, r.search);
   for (std::size_t i = 0; i < search.candidates.size(); ++i)
     candidates.push_back({mounting_.RobotPose(search.candidates[i].T_world_laser),
@@ -322,11 +321,6 @@ LocalisationResult Localiser::LocaliseHypothesis(const Hypothesis& h, const Iter
   again.evaluate_s += result.evaluate_s;
   again.refine_s += result.refine_s;
   return again;
-}
-
-// Without odometry (and with the motion search on) a hypothesis is searched for around itself.
-bool Localiser::SearchesMotion(const Iteration& iteration) const {
-  return !iteration.odometry && count_ > 0 && config_.session.motion_search.enabled;
 }
 
 // Discards the hypotheses the rules stopped validating or another out-costed (the reasons go into

@@ -42,6 +42,17 @@ SearchWindow MotionWindow::Window(const Pose2D& T_world_laser, double initial_ha
   return {T_world_laser, std::min(half_m, max_half_width_m), std::min(half_rad, max_half_yaw_rad)};
 }
 
+SearchWindow MotionWindow::Window(const Pose2D& T_world_laser,
+                                  const RecoveryOptions& recovery) const {
+  return Window(T_world_laser, recovery.min_half_width_m, recovery.min_half_yaw_rad,
+                recovery.max_half_width_m, recovery.max_half_yaw_rad);
+}
+
+bool SearchesMotion(const Iteration& iteration, std::size_t scans_before,
+                    const MotionSearchOptions& options) {
+  return !iteration.odometry && scans_before > 0 && options.enabled;
+}
+
 bool FrozenOdometry::SetAside(const Iteration& given) {
   if (!given.odometry) return false;
   if (!first_) {

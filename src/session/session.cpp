@@ -146,10 +146,6 @@ const Iteration& Session::UsableOdometry(const Iteration& given, std::optional<I
   return WithoutOdometryIf(options_.ignore_odometry || frozen, given, stripped);
 }
 
-bool Session::SearchesMotion(const Iteration& iteration) const {
-  return !iteration.odometry && count_ > 0 && options_.motion_search.enabled;
-}
-
 MapView Session::View() const {
   return {line_map_.empty() ? nullptr : &line_map_, &point_map_};
 }
@@ -243,7 +239,7 @@ void Session::LocaliseInto(IterationRecord& record, const Iteration& iteration) 
   AddMotionPrior(options, record.prediction, iteration);
   std::vector<Candidate> search;
   const bool was_lost = drift_.lost();
-  const bool searches_motion = SearchesMotion(iteration);
+  const bool searches_motion = SearchesMotion(iteration, count_, options_.motion_search);
   if (was_lost) AddSearchCandidates(record, iteration.scan, search);
   record.localisation = LocaliseCandidates(record.prediction, iteration, search, options);
   // Without odometry the map is searched when the last posture's candidates found nothing the
@@ -292,7 +288,7 @@ void Session::RestoreLocalised(IterationRecord& record, const Iteration& iterati
     throw ReplayMismatch("the replay localises the scan, the record says it was not localised");
   BoundedOptions(record);
   const bool was_lost = drift_.lost();
-  const bool searches_motion = SearchesMotion(iteration);
+  const bool searches_motion = SearchesMotion(iteration, count_, options_.motion_search);
   record.beyond_odometry = recorded.refused.has_value();
   if (!was_lost && !searches_motion) gate_.Restore(recorded.refused);
   if (was_lost) {
@@ -365,7 +361,7 @@ void Session::AfterLocalised(IterationRecord& record, const Iteration& iteration
   record.lost = drift_.lost();
   record.recovered = was_lost && record.validated;
   if (iteration.odometry) last_localised_odometry_ = *iteration.odometry;
-  if (record.validated && SearchesMotion(iteration))
+  if (record.validated && SearchesMotion(iteration, count_, options_.motion_search))
     motion_.Add(Between(last_pose_, record.T_world_robot));
 }
 
@@ -379,9 +375,7 @@ void Session::AddSearchCandidates(IterationRecord& record, const LaserScan& scan
 
 // Around the last posture, over the motion seen lately (at first, the recovery's initial window).
 void Session::MotionSearchWindow(IterationRecord& record) const {
-  const RecoveryOptions& r = options_.recovery;
-  record.search_window = motion_.Window(mounting_.LaserPose(record.prediction), r.min_half_width_m,
-                                        r.min_half_yaw_rad, r.max_half_width_m, r.max_half_yaw_rad);
+  record.search_window = motion_.Window(mounting_.LaserPose(record.prediction), options_.recovery);
   record.motion_search = true;
 }
 

@@ -118,7 +118,6 @@ class Localiser : public ScanProcessor {
   void LearnMotion(const IterationRecord& record, const Iteration& iteration);
   bool SearchDue(const Iteration& iteration) const;
   bool ViewChanged(const LaserScan& scan) const;
-  bool SearchesMotion(const Iteration& iteration) const;
   LocalisationResult LocaliseHypothesis(const Hypothesis& h, const Iteration& iteration,
                                         bool turning, bool& searched) const;
   void Search(IterationRecord& record, const Iteration& iteration);

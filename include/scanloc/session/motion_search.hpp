@@ -18,6 +18,7 @@
 #include "scanloc/geometry/pose2d.hpp"
 #include "scanloc/session/iteration.hpp"
 #include "scanloc/session/localisation.hpp"
+#include "scanloc/session/recovery.hpp"
 #include "scanloc/session/wide_search.hpp"
 
 namespace scanloc {
@@ -52,6 +53,8 @@ class MotionWindow {
   SearchWindow Window(const Pose2D& T_world_laser, double initial_half_width_m,
                       double initial_half_yaw_rad, double max_half_width_m,
                       double max_half_yaw_rad) const;
+  // The same, `recovery`'s initial window and caps.
+  SearchWindow Window(const Pose2D& T_world_laser, const RecoveryOptions& recovery) const;
   std::size_t motions() const { return translations_m_.size(); }
 
  private:
@@ -77,6 +80,11 @@ class FrozenOdometry {
   bool moved_ = false;         // since the first scan's
   bool found_frozen_ = false;  // not moved while the ranges did
 };
+
+// Whether a scan is localised without odometry and searched for over the motion seen lately:
+// none to predict it with, not the first scan, and the motion search on.
+bool SearchesMotion(const Iteration& iteration, std::size_t scans_before,
+                    const MotionSearchOptions& options);
 
 // Whether a scan localised from the last posture `from` (no odometry to predict with) is searched
 // for: the rules confirmed nothing there, or the kept refinement had to move beyond the minima.

@@ -174,7 +174,6 @@ class Session : public ScanProcessor {
   const Iteration& UsableOdometry(const Iteration& given, std::optional<Iteration>& stripped,
                                   bool& frozen);
   // A localised scan with no odometry to predict from: searched for over the motion seen lately.
-  bool SearchesMotion(const Iteration& iteration) const;
   MapView View() const;
   Pose2D Predict(const Iteration& iteration) const;
   bool ShouldLocalise(const Iteration& iteration) const;
