@@ -347,6 +347,9 @@ void VisitLoopClosure(C& c, V& v) {
   v("loop_closure.odometry_heading_test_chi2", l.odometry.heading_test_chi2, Bounds{0, 1e6},
     "odometry model: its heading noise is zero unless fitting it gains twice the log-likelihood "
     "beyond this χ² (1 dof; 6.635: 99 %; 0: no test)");
+  v("loop_closure.odometry_position_test_chi2", l.odometry.position_test_chi2, Bounds{0, 1e6},
+    "... and its position noise only what its heading noise implies unless fitting more gains "
+    "this (0: no test)");
   v("loop_closure.odometry_floor_m", l.odometry.floor_m, Bounds{1e-9, 10},
     "odometry model: added to each step's position σ, m ...");
   v("loop_closure.odometry_floor_rad", l.odometry.floor_rad, Bounds{1e-9, 1},

@@ -1,5 +1,6 @@
 #include "scanloc/graph/odometry_model.hpp"
 
+#include "scanloc/graph/paired_misses.hpp"
 #include "scanloc/graph/variance_components.hpp"
 
 #include <Eigen/LU>
@@ -27,12 +28,12 @@ double Median(std::vector<double> values) {
 
 void OdometryModelOptions::Validate() const {
   if (!(turn_weight_m_per_rad >= 0.0 && floor_m > 0.0 && floor_rad > 0.0 && stretch_m > 0.0 &&
-        position_per_heading_m2 >= 0.0 && heading_test_chi2 >= 0.0) ||
+        position_per_heading_m2 >= 0.0 && heading_test_chi2 >= 0.0 && position_test_chi2 >= 0.0) ||
       !std::isfinite(turn_weight_m_per_rad + floor_m + floor_rad + stretch_m +
-                     position_per_heading_m2 + heading_test_chi2))
+                     position_per_heading_m2 + heading_test_chi2 + position_test_chi2))
     throw std::invalid_argument(
-        "OdometryModelOptions: turn_weight_m_per_rad, position_per_heading_m2 and "
-        "heading_test_chi2 must be >= 0, the floors and stretch_m positive");
+        "OdometryModelOptions: turn_weight_m_per_rad, position_per_heading_m2 and the "
+        "tests' chi2 must be >= 0, the floors and stretch_m positive");
 }
 
 OdometryModel::OdometryModel(const OdometryModelOptions& options) : options_(options) {
@@ -57,20 +58,55 @@ void OdometryModel::Learn(std::vector<ChainMisses> closures, std::vector<ChainMi
   Fit();
 }
 
+// Each closure's two misses in heading as one observation, and the stretches' (paired_misses.hpp).
+std::vector<PairedMiss<1>> PairedHeadings(const std::vector<ChainMisses>& closures) {
+  std::vector<PairedMiss<1>> paired(closures.size());
+  for (std::size_t i = 0; i < closures.size(); ++i) {
+    const ChainMisses& m = closures[i];
+    PairedMiss<1>& p = paired[i];
+    p.odometry_miss(0) = m.odometry_miss(2);
+    p.matched_miss(0) = m.matched_miss(2);
+    p.odometry_known(0, 0) = m.odometry_floor(2, 2);
+    p.odometry_shape(0, 0) = m.odometry_per_heading(2, 2);
+    p.matched_shape(0, 0) = m.matched_covariance(2, 2);
+    p.closure_known(0, 0) = m.closure_covariance(2, 2);
+    p.closure_shape(0, 0) = 2.0;
+  }
+  return paired;
+}
+
+std::vector<StretchMiss<1>> StretchHeadings(const std::vector<ChainMisses>& stretches) {
+  std::vector<StretchMiss<1>> misses(stretches.size());
+  for (std::size_t i = 0; i < stretches.size(); ++i) {
+    const ChainMisses& m = stretches[i];
+    misses[i].miss(0) = m.odometry_miss(2);
+    misses[i].known(0, 0) = m.odometry_floor(2, 2);
+    misses[i].odometry_shape(0, 0) = m.odometry_per_heading(2, 2);
+    misses[i].matched_shape(0, 0) = m.matched_covariance(2, 2);
+    misses[i].jitter_shape(0, 0) = 2.0;
+  }
+  return misses;
+}
+
+// The odometry's heading noise λ_r, and the matching's jitter in heading (rad², at each matched
+// posture) that the paired test found beside it.
+struct HeadingFit {
+  double scale = 0.0, jitter = 0.0;
+};
+
 // λ_r from three sources compared two by two in heading (variance_components.hpp): each
 // closure against the odometry chain (λ_r and the closure's own error, a variance λ_c alike for
 // every closure) and against the matched chain (λ_s and λ_c), each stretch the odometry chain
 // against the matched one (λ_r and λ_s). A perfect odometry's closures miss by their own error,
-// which no longer passes for the odometry's. (A matched scan's jitter in heading, a mrad, is
-// small beside what the chains turn apart over a stretch: a component of its own for it was
-// measured and not kept.) λ_r is zero unless the misses reject zero: twice the log-likelihood of
-// this fit, against a fit without λ_r where each closure errs only as its own stated covariance,
-// understated as a matched step's (λ_s), allows, must exceed test_chi2. With few closures a perfect
-// odometry's misses (the closures' own 1–36 mrad on the Radish logs) fit λ_r or λ_c alike, and the
-// fit's iterations settle on either; a free λ_c would pass a drifting odometry's misses off as the
-// closures' own error just as well.
-double HeadingScale(const std::vector<ChainMisses>& closures,
-                    const std::vector<ChainMisses>& stretches, double test_chi2) {
+// which no longer passes for the odometry's. λ_r is zero unless the paired test
+// (paired_misses.hpp) rejects zero: with few closures a perfect odometry's misses (the closures'
+// own 1–36 mrad on the Radish logs) fit λ_r or λ_c alike, and the fit's iterations settle on
+// either. The test sees each closure's error in both its misses, and lets it be no larger than a
+// matched posture's jitter, learned from the stretches: a free closure error would pass a
+// drifting odometry's misses off as the closures' own (Intel, under perturbations of the
+// defaults, was lost 5 times in 10 that way). The jitter is returned for the position's test.
+HeadingFit FitHeading(const std::vector<ChainMisses>& closures,
+                      const std::vector<ChainMisses>& stretches, double test_chi2) {
   std::vector<VarianceObservation> observations;
   for (const ChainMisses& m : closures) {
     observations.push_back({m.odometry_miss(2) * m.odometry_miss(2), m.odometry_floor(2, 2),
@@ -82,24 +118,10 @@ double HeadingScale(const std::vector<ChainMisses>& closures,
     observations.push_back(
         {m.odometry_miss(2) * m.odometry_miss(2), m.odometry_floor(2, 2),
          Eigen::Vector3d(m.odometry_per_heading(2, 2), m.matched_covariance(2, 2), 0.0)});
-  const Eigen::VectorXd x = FitVarianceComponents(observations);
-  if (!(x(0) > 0.0) || !(test_chi2 > 0.0)) return x(0);
-  // The test: each closure errs only as its own covariance says, understated as a matched step's
-  // (λ_s), with λ_r and without it (no free variance of its own, to pass an odometry's drift off
-  // as the closures' error). The closures' two misses each come first, in their order.
-  std::vector<VarianceObservation> with = observations;
-  for (std::size_t i = 0; i < closures.size(); ++i) {
-    const ChainMisses& m = closures[i];
-    const double own = m.closure_covariance(2, 2);
-    with[2 * i].design = Eigen::Vector3d(m.odometry_per_heading(2, 2), own, 0.0);
-    with[2 * i + 1].design = Eigen::Vector3d(0.0, m.matched_covariance(2, 2) + own, 0.0);
-  }
-  std::vector<VarianceObservation> without = with;
-  for (VarianceObservation& o : without) o.design(0) = 0.0;
-  const double statistic =
-      2.0 * (VarianceComponentsLogLikelihood(with, FitVarianceComponents(with)) -
-             VarianceComponentsLogLikelihood(without, FitVarianceComponents(without)));
-  return statistic > test_chi2 ? x(0) : 0.0;
+  const double fitted = FitVarianceComponents(observations)(0);
+  const NoiseTest test = TestOdometryNoise<1>(PairedHeadings(closures), StretchHeadings(stretches));
+  const bool noisy = fitted > 0.0 && (!(test_chi2 > 0.0) || test.statistic > test_chi2);
+  return {noisy ? fitted : 0.0, noisy ? test.with.jitter : test.without.jitter};
 }
 
 // A position miss: its squared length, expected to be the trace of its covariance.
@@ -148,6 +170,47 @@ double PositionScaleUpperBound(const std::vector<ChainMisses>& closures,
   return x(0) + kBoundSigmas * std::sqrt(std::max(variance, 0.0));
 }
 
+// Whether the misses in position reject an odometry whose position noise is only `least` (m²/m,
+// what its heading noise implies): the heading's paired test (paired_misses.hpp) on each
+// closure's two position misses, the stretches' ends jittering as a matched scan does, the
+// heading's part at λ_r. Without it, a perfect odometry's position noise was what the fit of a
+// few closures settled on: one closure's few centimetres made it 2e-4 m²/m (edmonton).
+bool PositionRejectsLeast(const std::vector<ChainMisses>& closures,
+                          const std::vector<ChainMisses>& stretches, const HeadingFit& heading,
+                          double least, double test_chi2) {
+  const auto known = [&](const ChainMisses& m) -> Eigen::Matrix2d {
+    return (heading.scale * m.odometry_per_heading + least * m.odometry_per_position +
+            m.odometry_floor)
+        .topLeftCorner<2, 2>();
+  };
+  // A heading jitter at the start turns the whole way to the end about it.
+  const auto lever = [&](const ChainMisses& m) -> Eigen::Matrix2d {
+    const Eigen::Vector2d across(-m.translation_m.y(), m.translation_m.x());
+    return heading.jitter * across * across.transpose();
+  };
+  std::vector<PairedMiss<2>> paired(closures.size());
+  for (std::size_t i = 0; i < closures.size(); ++i) {
+    const ChainMisses& m = closures[i];
+    paired[i].odometry_miss = m.odometry_miss.head<2>();
+    paired[i].matched_miss = m.matched_miss.head<2>();
+    paired[i].odometry_known = known(m);
+    paired[i].odometry_shape = m.odometry_per_position.topLeftCorner<2, 2>();
+    paired[i].matched_shape = m.matched_covariance.topLeftCorner<2, 2>();
+    paired[i].closure_known = m.closure_covariance.topLeftCorner<2, 2>() + lever(m);
+    paired[i].closure_shape = 2.0 * Eigen::Matrix2d::Identity();
+  }
+  std::vector<StretchMiss<2>> misses(stretches.size());
+  for (std::size_t i = 0; i < stretches.size(); ++i) {
+    const ChainMisses& m = stretches[i];
+    misses[i].miss = m.odometry_miss.head<2>();
+    misses[i].known = known(m) + lever(m);
+    misses[i].odometry_shape = m.odometry_per_position.topLeftCorner<2, 2>();
+    misses[i].matched_shape = m.matched_covariance.topLeftCorner<2, 2>();
+    misses[i].jitter_shape = 2.0 * Eigen::Matrix2d::Identity();
+  }
+  return TestOdometryNoise<2>(paired, misses).statistic > test_chi2;
+}
+
 // The matched chain's scale on its closures' misses, the heading's from the three sources, the
 // position's from the stretches, and at least what a differential drive with that heading noise
 // has (where the stretches cannot tell it from the heading's).
@@ -158,12 +221,17 @@ void OdometryModel::Fit() {
     values[i] = m.matched_miss.dot(m.matched_covariance.inverse() * m.matched_miss);
   }
   matched_ = std::clamp(Median(values) / kChi2Median3, 1e-3, 1e6);
-  heading_ = HeadingScale(misses_, stretches_, options_.heading_test_chi2);
+  const HeadingFit heading = FitHeading(misses_, stretches_, options_.heading_test_chi2);
+  heading_ = heading.scale;
   position_ = stretches_.empty()
                   ? 0.0
                   : std::min(PositionScaleOnStretches(stretches_, heading_, matched_),
                              PositionScaleUpperBound(misses_, stretches_, heading_));
-  position_ = std::max(position_, options_.position_per_heading_m2 * heading_);
+  const double least = options_.position_per_heading_m2 * heading_;
+  if (position_ > least && options_.position_test_chi2 > 0.0 &&
+      !PositionRejectsLeast(misses_, stretches_, heading, least, options_.position_test_chi2))
+    position_ = least;
+  position_ = std::max(position_, least);
 }
 
 Eigen::Matrix3d OdometryModel::StepCovariance(const Pose2D& increment) const {

@@ -439,6 +439,7 @@ std::optional<ChainMisses> LoopCloser::Chains(std::size_t a, std::size_t b,
   misses.odometry_per_position = position.covariance;
   misses.odometry_per_heading = heading.covariance;
   misses.odometry_floor = floor.covariance;
+  misses.translation_m = (closure ? *closure : matched.T_start_end).Translation();
   return misses;
 }
 

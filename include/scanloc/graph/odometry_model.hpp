@@ -21,8 +21,9 @@
 //   chains, the stretches below the odometry chain against the matched one), each contributing a
 //   variance of its own (the closure's alike for every closure): variance_components.hpp. Zero
 //   unless the misses reject zero (heading_test_chi2): with few closures the misses of a perfect
-//   odometry, each the closure's own error, can be fitted either way. Without λ_r, a closure errs
-//   only as its own covariance says, understated as a matched step's (λ_s).
+//   odometry, each the closure's own error, can be fitted either way. The test pairs each
+//   closure's two misses, which hold its own error alike (paired_misses.hpp), and lets a closure
+//   err as the matching jitters at a matched posture, learned from the stretches' ends.
 // - λ_t (m²/m): the smaller of two estimates, and at least position_per_heading_m2·λ_r.
 //   - On the stretches alone: the odometry chain against the matched chain over stretches of
 //     stretch_m and of twice, four and eight times that, λ_t beside λ_j, the matching's jitter
@@ -36,6 +37,9 @@
 //     over a loop the heading's lever dominates a drifting odometry's position misses, so that
 //     the closures hardly see λ_t and the bound is wide; a perfect odometry's closures miss by
 //     their own few centimetres, and the bound is tight.
+//   λ_t beyond position_per_heading_m2·λ_r is kept only when the paired test in position
+//   (position_test_chi2) rejects that least value, the heading's jitter turning each stretch and
+//   closure about its start.
 // Odometry steps enter the graph as (model) / λ_s, in the graph's units.
 
 #include <Eigen/Core>
@@ -63,11 +67,13 @@ struct OdometryModelOptions {
   // noisy odometry's position from passing for exact.
   double position_per_heading_m2 = 0.0625;
   // The odometry's heading noise is taken as zero unless the misses reject zero: twice the
-  // log-likelihood of the fit with λ_r, against a fit without it in which each closure errs only
-  // as its stated covariance (understated as a matched step's) allows, must exceed this quantile
-  // of χ² with one degree of freedom (6.635: 99 %). An odometry is trusted until the closures and
-  // stretches disprove it; 0 takes the fit as it comes.
+  // log-likelihood of the paired fit with λ_r (paired_misses.hpp), against the same fit without
+  // it, must exceed this quantile of χ² with one degree of freedom (6.635: 99 %). An odometry is
+  // trusted until the closures and stretches disprove it; 0 takes the fit as it comes.
   double heading_test_chi2 = 6.635;
+  // The same test in position: λ_t beyond position_per_heading_m2·λ_r only when the misses reject
+  // that least value (0 takes the fit as it comes).
+  double position_test_chi2 = 6.635;
   void Validate() const;
 };
 
@@ -85,6 +91,8 @@ struct ChainMisses {
   Eigen::Matrix3d odometry_per_heading = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d odometry_floor = Eigen::Matrix3d::Identity();
   Eigen::Matrix3d closure_covariance = Eigen::Matrix3d::Zero();  // the closure's own; 0: a stretch
+  // The end seen from the start (m): the lever a heading error at the start moves the end by.
+  Eigen::Vector2d translation_m = Eigen::Vector2d::Zero();
 };
 
 // One odometry step's covariance split by what it scales with (the sum is λ_t·position +

@@ -1,0 +1,69 @@
+#pragma once
+// Does a log's odometry drift, or do its closures err? Each confirmed closure measures an old
+// node's posture from a newer one, and the odometry chain and the matched chain each miss that
+// measurement. Both misses hold the closure's own error, the same numbers in both: a closure that
+// erred by 20 mrad makes both chains miss by about 20 mrad, with the same sign. A drifting odometry
+// makes the odometry's miss alone large. Fitted as independent squared misses
+// (variance_components.hpp), the two look alike, and a perfect odometry's closures (erring by
+// 5–10 times their stated σ) passed for an odometry drifting at 1e-5 rad²/m, which kept its steps
+// out of the graph. Here each closure's two misses are one observation with their joint
+// covariance:
+//   odometry miss: known + λ_o·O + λ_c·C      cross term: λ_c·C
+//   matched miss:  λ_s·M + λ_c·C
+// (O the odometry chain's shape over the loop, M the matched chain's covariance, C the closure's
+// own), and each stretch of the chain (the odometry chain against the matched one, no closure) is
+// one more: known + λ_o·O + λ_s·M + λ_j·J (J the matching's jitter at its two ends, in position).
+// The likelihood is maximised with and without λ_o, every scale ≥ 0; a squared Mahalanobis
+// distance beyond the 99.9 % quantile of χ² counts as Huber's (growing with its root), so that one
+// wild miss cannot decide. K = 1 for the heading, 2 for the position.
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace scanloc {
+
+template <int K>
+struct PairedMiss {
+  using Vector = Eigen::Matrix<double, K, 1>;
+  using Matrix = Eigen::Matrix<double, K, K>;
+  Vector odometry_miss = Vector::Zero(), matched_miss = Vector::Zero();
+  Matrix odometry_known = Matrix::Zero();  // the odometry chain's variance no scale multiplies
+  Matrix odometry_shape = Matrix::Zero();  // times λ_o
+  Matrix matched_shape = Matrix::Zero();   // times λ_s
+  Matrix closure_known = Matrix::Zero();   // the closure's stated covariance, in both misses
+  Matrix closure_shape = Matrix::Zero();   // times λ_j, the matching's jitter, in both misses
+};
+
+// One stretch: the odometry chain minus the matched chain, no closure.
+template <int K>
+struct StretchMiss {
+  using Vector = Eigen::Matrix<double, K, 1>;
+  using Matrix = Eigen::Matrix<double, K, K>;
+  Vector miss = Vector::Zero();
+  Matrix known = Matrix::Zero(), odometry_shape = Matrix::Zero(), matched_shape = Matrix::Zero();
+  Matrix jitter_shape = Matrix::Zero();  // times λ_j
+};
+
+struct PairedScales {
+  double odometry = 0.0, matched = 0.0, jitter = 0.0;  // λ_o, λ_s, λ_j
+};
+
+// The log-likelihood of the misses under `scales`, up to a constant (robust as above).
+template <int K>
+double PairedLogLikelihood(const std::vector<PairedMiss<K>>& closures,
+                           const std::vector<StretchMiss<K>>& stretches,
+                           const PairedScales& scales);
+
+// The likelihood-ratio test of the odometry's noise: the scales that maximise the likelihood with
+// λ_o held at zero and with it free (λ_s and λ_j free in both), and twice the log-likelihood the
+// second gains (χ² with 1 degree of freedom, or its half-mixture with 0, under a perfect odometry).
+// All zero without closures.
+struct NoiseTest {
+  double statistic = 0.0;
+  PairedScales without, with;
+};
+template <int K>
+NoiseTest TestOdometryNoise(const std::vector<PairedMiss<K>>& closures,
+                            const std::vector<StretchMiss<K>>& stretches);
+
+}  // namespace scanloc
