@@ -108,6 +108,7 @@ void PrintOdometryModel(const nlohmann::json& loop_closure) {
             << 1e3 * std::sqrt(m["heading_rad2_per_m"].get<double>()) << " mrad and position "
             << 1e2 * std::sqrt(m["position_m2_per_m"].get<double>())
             << " cm per √m, matched chain's covariance × " << m["matched_scale"].get<double>()
+            << " (heading test " << m["heading_test_statistic"].get<double>() << ")"
             << "; " << m["edges_in_graph"] << " of its steps hold the graph\n";
 }
 

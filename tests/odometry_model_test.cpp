@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -148,7 +149,7 @@ TEST(OdometryModel, APerfectOdometrysPositionIsNotTakenForTheMatchingsJitter) {
 // scan matched on a map errs: the matched postures jitter by 14 mrad that the next step undoes.
 // Zero heading noise and a little of it explain the misses alike, and the fit alone settles on a
 // little; the paired test (paired_misses.hpp) finds the closures' error in both chains' misses and
-// leaves the odometry as it came: perfect, in heading and in position.
+// leaves the odometry as it came: perfect, in heading and in position. It finds the jitter too.
 TEST(OdometryModel, APerfectOdometryIsNotTakenForNoisyByClosuresThatErrAsTheMatchingJitters) {
   const Drive drive = MakeDrive(0.0, 0.0, 0.0, 0.014);
   OdometryModelOptions untested;
@@ -159,6 +160,8 @@ TEST(OdometryModel, APerfectOdometryIsNotTakenForNoisyByClosuresThatErrAsTheMatc
   const OdometryModel tested = Learned(drive, {}, 0.02);
   EXPECT_EQ(tested.heading_rad2_per_m(), 0.0);
   EXPECT_EQ(tested.position_m2_per_m(), 0.0);
+  EXPECT_LT(tested.heading_test_statistic(), 6.635);
+  EXPECT_NEAR(std::sqrt(tested.heading_jitter_rad2()), 0.014, 0.0035);  // 12.7 mrad found
 }
 
 // What closures erring by 20 mrad beside that jitter can tell: five find an odometry of 3e-4

@@ -91,7 +91,7 @@ std::vector<StretchMiss<1>> StretchHeadings(const std::vector<ChainMisses>& stre
 // The odometry's heading noise λ_r, and the matching's jitter in heading (rad², at each matched
 // posture) that the paired test found beside it.
 struct HeadingFit {
-  double scale = 0.0, jitter = 0.0;
+  double scale = 0.0, jitter = 0.0, statistic = 0.0;
 };
 
 // λ_r from three sources compared two by two in heading (variance_components.hpp): each
@@ -121,7 +121,7 @@ HeadingFit FitHeading(const std::vector<ChainMisses>& closures,
   const double fitted = FitVarianceComponents(observations)(0);
   const NoiseTest test = TestOdometryNoise<1>(PairedHeadings(closures), StretchHeadings(stretches));
   const bool noisy = fitted > 0.0 && (!(test_chi2 > 0.0) || test.statistic > test_chi2);
-  return {noisy ? fitted : 0.0, noisy ? test.with.jitter : test.without.jitter};
+  return {noisy ? fitted : 0.0, noisy ? test.with.jitter : test.without.jitter, test.statistic};
 }
 
 // A position miss: its squared length, expected to be the trace of its covariance.
@@ -170,14 +170,14 @@ double PositionScaleUpperBound(const std::vector<ChainMisses>& closures,
   return x(0) + kBoundSigmas * std::sqrt(std::max(variance, 0.0));
 }
 
-// Whether the misses in position reject an odometry whose position noise is only `least` (m²/m,
+// How far the misses in position reject an odometry whose position noise is only `least` (m²/m,
 // what its heading noise implies): the heading's paired test (paired_misses.hpp) on each
 // closure's two position misses, the stretches' ends jittering as a matched scan does, the
 // heading's part at λ_r. Without it, a perfect odometry's position noise was what the fit of a
 // few closures settled on: one closure's few centimetres made it 2e-4 m²/m (edmonton).
-bool PositionRejectsLeast(const std::vector<ChainMisses>& closures,
-                          const std::vector<ChainMisses>& stretches, const HeadingFit& heading,
-                          double least, double test_chi2) {
+double PositionStatistic(const std::vector<ChainMisses>& closures,
+                         const std::vector<ChainMisses>& stretches, const HeadingFit& heading,
+                         double least) {
   const auto known = [&](const ChainMisses& m) -> Eigen::Matrix2d {
     return (heading.scale * m.odometry_per_heading + least * m.odometry_per_position +
             m.odometry_floor)
@@ -208,7 +208,7 @@ bool PositionRejectsLeast(const std::vector<ChainMisses>& closures,
     misses[i].matched_shape = m.matched_covariance.topLeftCorner<2, 2>();
     misses[i].jitter_shape = 2.0 * Eigen::Matrix2d::Identity();
   }
-  return TestOdometryNoise<2>(paired, misses).statistic > test_chi2;
+  return TestOdometryNoise<2>(paired, misses).statistic;
 }
 
 // The matched chain's scale on its closures' misses, the heading's from the three sources, the
@@ -223,14 +223,18 @@ void OdometryModel::Fit() {
   matched_ = std::clamp(Median(values) / kChi2Median3, 1e-3, 1e6);
   const HeadingFit heading = FitHeading(misses_, stretches_, options_.heading_test_chi2);
   heading_ = heading.scale;
+  heading_statistic_ = heading.statistic;
+  heading_jitter_ = heading.jitter;
+  position_statistic_.reset();
   position_ = stretches_.empty()
                   ? 0.0
                   : std::min(PositionScaleOnStretches(stretches_, heading_, matched_),
                              PositionScaleUpperBound(misses_, stretches_, heading_));
   const double least = options_.position_per_heading_m2 * heading_;
-  if (position_ > least && options_.position_test_chi2 > 0.0 &&
-      !PositionRejectsLeast(misses_, stretches_, heading, least, options_.position_test_chi2))
-    position_ = least;
+  if (position_ > least && options_.position_test_chi2 > 0.0) {
+    position_statistic_ = PositionStatistic(misses_, stretches_, heading, least);
+    if (!(*position_statistic_ > options_.position_test_chi2)) position_ = least;
+  }
   position_ = std::max(position_, least);
 }
 

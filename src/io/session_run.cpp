@@ -93,6 +93,10 @@ nlohmann::json OdometryModelSummary(const OdometryModel& model, const PoseGraph&
   json["position_m2_per_m"] = model.position_m2_per_m();
   json["heading_rad2_per_m"] = model.heading_rad2_per_m();
   json["matched_scale"] = model.matched_scale();
+  json["heading_test_statistic"] = model.heading_test_statistic();
+  json["position_test_statistic"] =
+      model.position_test_statistic() ? nlohmann::json(*model.position_test_statistic()) : nullptr;
+  json["matching_heading_jitter_rad2"] = model.heading_jitter_rad2();
   return json;
 }
 

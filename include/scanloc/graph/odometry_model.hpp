@@ -44,6 +44,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "scanloc/geometry/pose2d.hpp"
@@ -123,6 +124,12 @@ class OdometryModel {
   double position_m2_per_m() const { return position_; }
   double heading_rad2_per_m() const { return heading_; }
   double matched_scale() const { return matched_; }
+  // The last fit's paired tests (paired_misses.hpp): twice the log-likelihood the heading's noise
+  // gained, the same for the position's beyond what the heading implies (none when that test was
+  // not needed), and the matching's jitter in heading found beside them (rad²).
+  double heading_test_statistic() const { return heading_statistic_; }
+  std::optional<double> position_test_statistic() const { return position_statistic_; }
+  double heading_jitter_rad2() const { return heading_jitter_; }
 
  private:
   void Fit();
@@ -133,6 +140,8 @@ class OdometryModel {
   double position_ = 0.0;  // λ_t
   double heading_ = 0.0;   // λ_r
   double matched_ = 1.0;   // λ_s
+  double heading_statistic_ = 0.0, heading_jitter_ = 0.0;
+  std::optional<double> position_statistic_;
 };
 
 }  // namespace scanloc
