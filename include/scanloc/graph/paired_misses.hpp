@@ -8,11 +8,14 @@
 // 5–10 times their stated σ) passed for an odometry drifting at 1e-5 rad²/m, which kept its steps
 // out of the graph. Here each closure's two misses are one observation with their joint
 // covariance:
-//   odometry miss: known + λ_o·O + λ_c·C      cross term: λ_c·C
-//   matched miss:  λ_s·M + λ_c·C
-// (O the odometry chain's shape over the loop, M the matched chain's covariance, C the closure's
-// own), and each stretch of the chain (the odometry chain against the matched one, no closure) is
-// one more: known + λ_o·O + λ_s·M + λ_j·J (J the matching's jitter at its two ends, in position).
+//   odometry miss: known + λ_o·O + E      cross term: E      matched miss: λ_s·M + E
+// with E = C + λ_j·J the closure's error: C its stated covariance, J the shape of two matched
+// postures' jitter. (O is the odometry chain's shape over the loop, M the matched chain's
+// covariance.) Each stretch of the chain (the odometry chain against the matched one, no closure)
+// is one more observation: known + λ_o·O + λ_s·M + λ_j·J, its two ends jittering alike. A closure
+// errs as a scan matched on a map does, and the stretches measure how much that is: a free
+// closure error would explain any odometry's misses where the matched chain drifts too far to
+// vouch for the closures (a ring of tests/loop_closure_test.cpp; Intel under perturbations).
 // The likelihood is maximised with and without λ_o, every scale ≥ 0; a squared Mahalanobis
 // distance beyond the 99.9 % quantile of χ² counts as Huber's (growing with its root), so that one
 // wild miss cannot decide. K = 1 for the heading, 2 for the position.
