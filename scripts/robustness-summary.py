@@ -74,6 +74,38 @@ def row(name, scores):
     return misses
 
 
+def odometry_model(run_dir):
+    """What the run's odometry model concluded (summary.json), as text; "" when it learned none."""
+    try:
+        with open(os.path.join(run_dir, "summary.json")) as f:
+            model = json.load(f)["loop_closure"]["odometry_model"]
+    except (OSError, ValueError, KeyError):
+        return ""
+    if "heading_rad2_per_m" not in model:
+        return "odometry not learned"
+    test = model.get("heading_test_statistic")
+    test_cell = f" (heading test {test:.1f})" if test is not None else ""
+    return (f"heading {model['heading_rad2_per_m']:.2g} rad²/m{test_cell}, position "
+            f"{model['position_m2_per_m']:.2g} m²/m, {model['edges_in_graph']} odometry steps in "
+            f"the graph")
+
+
+def exact_misses(out, count):
+    """The perfect-odometry runs that miss issue 15's target, each with its odometry model: a
+    perfect odometry taken for a noisy one keeps its steps out of the graph."""
+    lines = []
+    for i in range(count):
+        for log in RADISH:
+            name = f"{log}-exact"
+            s = load(os.path.join(out, f"p{i}", f"{name}.evaluation.json"))
+            if s and s["mean"] < EXACT_MEAN_M and s["max"] < EXACT_MAX_M:
+                continue
+            score = f"{s['mean']:.3f} / {s['max']:.2f} m" if s else "failed"
+            model = odometry_model(os.path.join(out, f"p{i}", name))
+            lines.append(f"- p{i} {name}: {score}" + (f"; {model}" if model else ""))
+    return lines
+
+
 def main():
     out, count = sys.argv[1], int(sys.argv[2])
     datasets = os.environ.get("SCANLOC_DATASETS", "../shared/datasets")
@@ -103,6 +135,11 @@ def main():
           f"{misses['noisy']} of {count * len(RADISH)} (target: none)")
     print(f"Radish perfect-odometry runs not below {EXACT_MEAN_M:g} m mean and {EXACT_MAX_M:g} m "
           f"max: {misses['exact']} of {count * len(RADISH)} (target: none)")
+    lines = exact_misses(out, count)
+    if lines:
+        print()
+        print("The perfect-odometry runs that miss it, and what their odometry model learned:")
+        print("\n".join(lines))
     failed = os.path.join(out, "failed")
     if os.path.exists(failed):
         print("Failed runs: " + ", ".join(open(failed).read().split("\n")).strip(", "))
