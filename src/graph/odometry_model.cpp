@@ -58,6 +58,8 @@ void OdometryModel::Learn(std::vector<ChainMisses> closures, std::vector<ChainMi
   Fit();
 }
 
+namespace {
+
 // Each closure's two misses in heading as one observation, and the stretches' (paired_misses.hpp).
 std::vector<PairedMiss<1>> PairedHeadings(const std::vector<ChainMisses>& closures) {
   std::vector<PairedMiss<1>> paired(closures.size());
@@ -210,6 +212,8 @@ double PositionStatistic(const std::vector<ChainMisses>& closures,
   }
   return TestOdometryNoise<2>(paired, misses).statistic;
 }
+
+}  // namespace
 
 // The matched chain's scale on its closures' misses, the heading's from the three sources, the
 // position's from the stretches, and at least what a differential drive with that heading noise
