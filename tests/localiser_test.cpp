@@ -264,20 +264,29 @@ TEST(Localiser, ALookAlikeThatCostsMoreAtEveryScanIsDiscardedAndTheRightRoomConf
   EXPECT_LT(control.first_confirmed, 0);
 }
 
-TEST(Localiser, StandingStillItStillTellsTheLookAlikeApartUnlessStillScansAreSkipped) {
+// A robot that never moves shows one view: its scans repeat that view's evidence, they add none
+// (localise.evidence_from_new_views). Both rooms stay held, the output the right one (it costs
+// less at every scan), and nothing is confirmed until the robot moves. Counting every still scan
+// as evidence (the rule until 2026-12-06) tells the look-alike apart standing still; skipping the
+// scans of a robot that has not moved leaves both held to the end either way.
+TEST(Localiser, StandingStillOneViewIsOneScansEvidenceSoTheLookAlikeStaysHeld) {
   LineMap western;
   AddBox(western, 0.0, 0.0, 8.0, 5.0);
   western.segments.push_back({{4.0, 0.0}, {4.0, 3.5}});
-  // The robot never moves: every step is none (the odometry's noise only). Standing still it
-  // cannot be confirmed (a search after it moved must find no other), but the look-alike goes.
+  // Every step is none (the odometry's noise only).
   const Drive still = DriveThrough(western, {1.0, 1.5, M_PI / 2.0}, 30, 20.0, 0.0, -1, {},
                                    [](int) { return Pose2D{}; });
   const LookAlikeRun run = RunBesideALookAlike(DefaultConfig(), still);
-  EXPECT_GE(run.scans_with_both, 1);
-  EXPECT_LE(run.scans_with_both, 12);
+  EXPECT_GE(run.scans_with_both, 28);
+  EXPECT_LT(run.first_confirmed, 0);
   EXPECT_LT(ErrorM(run.last, still.truth.back()), 0.05);
-  // Skipping the scans of a robot that has not moved leaves both held to the end.
-  LocaliserConfig skipping = DefaultConfig();
+  LocaliserConfig every_scan = DefaultConfig();
+  every_scan.localiser.evidence_from_new_views = false;
+  const LookAlikeRun counted = RunBesideALookAlike(every_scan, still);
+  EXPECT_GE(counted.scans_with_both, 1);
+  EXPECT_LE(counted.scans_with_both, 12);
+  EXPECT_LT(ErrorM(counted.last, still.truth.back()), 0.05);
+  LocaliserConfig skipping = every_scan;
   skipping.localiser.track_while_still = false;
   const LookAlikeRun control = RunBesideALookAlike(skipping, still);
   EXPECT_GE(control.scans_with_both, 28);

@@ -411,6 +411,9 @@ void VisitLocalise(C& c, V& v) {
   v("localise.same_posture_m", l.same_posture_m, Bounds{0, 1e3},
     "hypotheses closer than this and same_posture_rad are one, m");
   v("localise.same_posture_rad", l.same_posture_rad, kAngle, "... and this, rad");
+  v("localise.evidence_from_new_views", l.evidence_from_new_views,
+    "a scan's costs tell held hypotheses apart only when it is a new view: the odometry moved "
+    "or turned as much since the last scan whose costs did as the session's insert gate asks");
   auto& w = l.search;
   v("localise.search_resolution_m", w.field.resolution_m, Bounds{1e-3, 10},
     "global search: the likelihood field's cell, m");

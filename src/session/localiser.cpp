@@ -38,15 +38,16 @@ bool MovedSince(const std::optional<Pose2D>& from, const Iteration& iteration,
 }
 
 // The hypothesis takes a refinement's posture, what the rules said of it and its cost at `scan`.
+// Its cost enters the evidence only at an evidence scan (Localiser::EvidenceDue).
 void TakeRefinement(Hypothesis& h, const RankedCandidate& refined, std::size_t scan,
-                    const LocalisationOptions& options) {
+                    const LocalisationOptions& options, bool evidence) {
   h.T_world_robot = refined.T_world_robot;
   h.cost = refined.cost;
   h.verdict = refined.verdict;
   h.expect_value_m = refined.test.expect_value_m;
   h.match_ratio = refined.test.MatchRatio();
   h.truncated_mean_m = TruncatedMeanDistance(refined.test, options.scoring.test.match_threshold_m);
-  RecordCost(h, scan, h.truncated_mean_m, h.expect_value_m, h.match_ratio);
+  if (evidence) RecordCost(h, scan, h.truncated_mean_m, h.expect_value_m, h.match_ratio);
 }
 
 // "(x, y, θ)" of a posture, for the reasons a hypothesis was discarded.
@@ -130,6 +131,7 @@ IterationRecord Localiser::Process(const Iteration& given) {
     record.max_expect_value_m = BoundAt(record.prediction);
   }
   const bool search = SearchDue(iteration);
+  evidence_ = EvidenceDue(iteration);
   const bool still_unconfirmed = !confirmed_ && config_.localiser.track_while_still;
   if (!hypotheses_.empty() && (search || still_unconfirmed ||
                                MovedSince(last_localised_odometry_, iteration, config_.session))) {
@@ -139,6 +141,7 @@ IterationRecord Localiser::Process(const Iteration& given) {
   }
   if (search) Search(record, iteration);
   if (!record.skipped && iteration.odometry) last_localised_odometry_ = iteration.odometry;
+  if (!record.skipped && evidence_) last_evidence_odometry_ = iteration.odometry;
   record.without_odometry =
       odometry_from_scans_ && !record.skipped && record.localisation.has_value();
   record.odometry_from_scans = record.without_odometry && iteration.odometry.has_value();
@@ -174,6 +177,7 @@ const Iteration& Localiser::UsableOdometry(const Iteration& given,
     // the travel towards the next global search counts from here.
     last_odometry_.reset();
     last_localised_odometry_.reset();
+    last_evidence_odometry_.reset();
     if (last_search_odometry_) last_search_odometry_ = iteration.odometry;
     odometry_from_scans_ = from_scans;
   }
@@ -211,6 +215,16 @@ bool Localiser::SearchDue(const Iteration& iteration) const {
          std::abs(since.yaw_rad) >= o.research_turn_rad;
 }
 
+// Whether this scan's costs are evidence: a new view since the last scan whose costs were, by the
+// session's insert gate (always without odometry, at the first, or with the option off).
+bool Localiser::EvidenceDue(const Iteration& iteration) const {
+  if (!config_.localiser.evidence_from_new_views || !iteration.odometry || !last_evidence_odometry_)
+    return true;
+  const Pose2D since = Between(*last_evidence_odometry_, *iteration.odometry);
+  return std::hypot(since.x_m, since.y_m) >= config_.session.insert_translation_m ||
+         std::abs(since.yaw_rad) >= config_.session.insert_rotation_rad;
+}
+
 // Whether `scan`'s ranges differ from those of the scan last searched by more than the frozen
 // odometry's test allows a robot standing still (true when that cannot be told).
 bool Localiser::ViewChanged(const LaserScan& scan) const {
@@ -245,7 +259,7 @@ void Localiser::Search(IterationRecord& record, const Iteration& iteration) {
   for (const RankedCandidate& refined : result.refined)
     if (refined.verdict == Verdict::kValid) {
       Hypothesis found;
-      TakeRefinement(found, refined, count_, in_force_);
+      TakeRefinement(found, refined, count_, in_force_, evidence_);
       found.confirmed_in_row = found.confirmations = 1;
       found.validated = true;
       hypotheses_.push_back(found);
@@ -269,7 +283,7 @@ void Localiser::Track(IterationRecord& record, const Iteration& iteration) {
     record.motion_searched_hypotheses += searched;
     h.verdict = Verdict::kNoValidPairs;
     if (const RankedCandidate* kept = results.back().Kept())
-      TakeRefinement(h, *kept, count_, in_force_);
+      TakeRefinement(h, *kept, count_, in_force_, evidence_);
     h.validated = results.back().validated();
   }
   const std::vector<bool> counts =
