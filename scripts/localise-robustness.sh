@@ -5,6 +5,7 @@
 # nine perturbations that should not matter), each scored against the session that wrote its map
 # (scripts/localise_agreement.py). A start agrees when its median distance over the scans after the
 # 30th is below 0.1 m and its 95th percentile below 0.3 m: the thresholds of the localise tests.
+# The table also counts the scans each start stated "confirmed" more than 1 m from the session.
 #   scripts/localise-robustness.sh HARNESS_OUT [OUT_DIR [LOCALISE_ARGS...]]
 # HARNESS_OUT is a robustness harness's output (its p0/aces, p0/intel, ... runs); OUT_DIR defaults
 # to build/localise-robustness. JOBS runs at a time (default: the number of processors). 60 runs,
@@ -42,10 +43,11 @@ xargs -0 -n 3 -P "${JOBS:-$(nproc)}" bash -c '
 python3 - "$out" <<'PY'
 import glob, json, os, sys
 out = sys.argv[1]
-print("| run | first confirmed: scan | median [m] | p95 [m] | max [m] | agrees |")
-print("|---|---|---|---|---|---|")
+print("| run | first confirmed: scan | median [m] | p95 [m] | max [m] | scans confirmed > 1 m off "
+      "| agrees |")
+print("|---|---|---|---|---|---|---|")
 fmt = lambda v, f="%.3f": "—" if v is None else (f % v if v != float("inf") else "∞")
-failed = []
+failed, wrong = [], []
 runs = sorted(glob.glob(f"{out}/*.json"))
 for path in runs:
     name = os.path.basename(path)[:-5]
@@ -53,8 +55,13 @@ for path in runs:
     agrees = r["median_m"] < 0.1 and r["p95_m"] < 0.3
     if not agrees:
         failed.append(name)
+    if r["confirmed_far_scans"]:
+        wrong.append(name)
     print(f"| {name} | {fmt(r['first_confirmed_scan'], '%d')} | {fmt(r['median_m'])} "
-          f"| {fmt(r['p95_m'])} | {fmt(r['max_m'])} | {'yes' if agrees else '**no**'} |")
+          f"| {fmt(r['p95_m'])} | {fmt(r['max_m'])} | {r['confirmed_far_scans']} "
+          f"| {'yes' if agrees else '**no**'} |")
 print(f"\n{len(runs) - len(failed)} of {len(runs)} starts agree with the session that wrote the map"
       + (f"; not: {', '.join(failed)}" if failed else ""))
+print(f"{len(wrong)} of {len(runs)} starts confirmed a place more than 1 m off"
+      + (f": {', '.join(wrong)}" if wrong else ""))
 PY

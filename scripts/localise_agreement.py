@@ -7,7 +7,9 @@ each scan (matched by timestamp) against the session's, and when the posture was
 Prints one JSON object: scans and log seconds to the first confirmed posture, the median, 95th
 percentile and maximum distance (m) over the scans after the first N (default 30; a scan without a
 posture counts as infinitely far), and, with --splice-at K (the first scan of a spliced log's
-second stretch), the scans after K until the posture was confirmed again.
+second stretch), the scans after K until the posture was confirmed again. `confirmed_far_scans`
+counts the scans (from the first) stated "confirmed" more than 1 m from the session's posture: a
+wrong place confirmed, where "ambiguous" would have been honest.
 """
 import argparse
 import json
@@ -34,18 +36,18 @@ def main():
     reference = tum(a.session + "/trajectory.tum")
     records = [json.loads(line) for line in open(a.localise + "/iterations.jsonl")]
     summary = json.load(open(a.localise + "/summary.json"))
-    errors, reconfirmed = [], None
+    errors, reconfirmed, confirmed_far = [], None, 0
     for r in records:
+        truth = reference.get(round(r["timestamp_s"], 6))
+        p = r["T_world_robot"]
+        if truth is not None and r.get("state") == "confirmed" and r.get("posed", True):
+            confirmed_far += math.hypot(p["x_m"] - truth[0], p["y_m"] - truth[1]) > 1.0
         if a.splice_at is not None and reconfirmed is None and r["index"] >= a.splice_at \
                 and r.get("state") == "confirmed" and any(
                     q.get("lost") for q in records[a.splice_at:r["index"]]):
             reconfirmed = r["index"] - a.splice_at
-        if r["index"] < a.settle:
+        if r["index"] < a.settle or truth is None:
             continue
-        truth = reference.get(round(r["timestamp_s"], 6))
-        if truth is None:
-            continue
-        p = r["T_world_robot"]
         errors.append(math.hypot(p["x_m"] - truth[0], p["y_m"] - truth[1]) if r.get("posed", True)
                       else math.inf)
     errors.sort()
@@ -63,6 +65,7 @@ def main():
         "search_wall_s_max": max(searches) if searches else None,
         "lost": summary.get("lost_stretches"),
         "scans_to_reconfirm_after_splice": reconfirmed,
+        "confirmed_far_scans": confirmed_far,
     }))
 
 
