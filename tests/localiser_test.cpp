@@ -204,6 +204,7 @@ TEST(Localiser, WithoutOdometryTheMotionSearchAloneStillConfirmsTheRightRoom) {
 struct LookAlikeRun {
   int scans_with_both = 0;  // scans holding both the right room's posture and its look-alike's
   int first_confirmed = -1;
+  int not_evidence = 0;  // records saying their costs were no new view's evidence
   Pose2D last;
   std::vector<std::string> discarded;  // every record's reasons, in order
 };
@@ -230,6 +231,7 @@ LookAlikeRun RunBesideALookAlike(const LocaliserConfig& config, const Drive& dri
       east_held = east_held || ErrorM(h.T_world_robot, east) < 0.1;
     }
     if (west_held && east_held) ++run.scans_with_both;
+    run.not_evidence += r.not_evidence;
     run.discarded.insert(run.discarded.end(), r.discarded.begin(), r.discarded.end());
     if (r.state == "confirmed" && run.first_confirmed < 0)
       run.first_confirmed = static_cast<int>(i);
@@ -279,10 +281,12 @@ TEST(Localiser, StandingStillOneViewIsOneScansEvidenceSoTheLookAlikeStaysHeld) {
   const LookAlikeRun run = RunBesideALookAlike(DefaultConfig(), still);
   EXPECT_GE(run.scans_with_both, 28);
   EXPECT_LT(run.first_confirmed, 0);
+  EXPECT_GE(run.not_evidence, 28);  // every scan after the first says so in its record
   EXPECT_LT(ErrorM(run.last, still.truth.back()), 0.05);
   LocaliserConfig every_scan = DefaultConfig();
   every_scan.localiser.evidence_from_new_views = false;
   const LookAlikeRun counted = RunBesideALookAlike(every_scan, still);
+  EXPECT_EQ(counted.not_evidence, 0);
   EXPECT_GE(counted.scans_with_both, 1);
   EXPECT_LE(counted.scans_with_both, 12);
   EXPECT_LT(ErrorM(counted.last, still.truth.back()), 0.05);

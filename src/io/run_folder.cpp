@@ -142,6 +142,7 @@ void WriteOutcome(JsonWriter& out, const IterationRecord& r) {
   if (r.odometry_from_scans) out.Member(keys::kOdometryFromScans, true);
   if (r.motion_searched_hypotheses > 0)
     out.Member(keys::kMotionSearchedHypotheses, r.motion_searched_hypotheses);
+  if (r.not_evidence) out.Member(keys::kEvidence, false);
 }
 
 // The candidates tried and the refinement kept, when the scan was localised.

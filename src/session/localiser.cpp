@@ -142,6 +142,7 @@ IterationRecord Localiser::Process(const Iteration& given) {
   if (search) Search(record, iteration);
   if (!record.skipped && iteration.odometry) last_localised_odometry_ = iteration.odometry;
   if (!record.skipped && evidence_) last_evidence_odometry_ = iteration.odometry;
+  record.not_evidence = !record.skipped && !evidence_;
   record.without_odometry =
       odometry_from_scans_ && !record.skipped && record.localisation.has_value();
   record.odometry_from_scans = record.without_odometry && iteration.odometry.has_value();

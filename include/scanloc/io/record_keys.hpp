@@ -69,6 +69,7 @@ inline constexpr const char* kOdometryFrozen = "odometry_frozen";
 inline constexpr const char* kWithoutOdometry = "without_odometry";
 inline constexpr const char* kOdometryFromScans = "odometry_from_scans";
 inline constexpr const char* kMotionSearchedHypotheses = "motion_searched_hypotheses";
+inline constexpr const char* kEvidence = "evidence";
 inline constexpr const char* kRefine = "refine";
 inline constexpr const char* kRefinedCandidates = "refined_candidates";
 inline constexpr const char* kRefinedTWorldRobot = "refined_T_world_robot";

@@ -85,6 +85,9 @@ struct IterationRecord {
   // The log's odometry had not moved since the first scan while the ranges did: it was not used
   // for this scan (session.motion_search.frozen_odometry_range_change_m).
   bool odometry_frozen = false;
+  // Localisation on a saved map: this scan's costs did not enter the held hypotheses' evidence,
+  // since it was no new view (LocaliserOptions::evidence_from_new_views).
+  bool not_evidence = false;
   // Localisation on a saved map (Localiser): "searching", "ambiguous", "tentative" or "confirmed"
   // ("" in a session), and the hypotheses held after this scan, best first. A scan without a
   // hypothesis has no posture (posed false): it is left out of the trajectory.
