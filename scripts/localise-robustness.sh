@@ -6,8 +6,9 @@
 # (scripts/localise_agreement.py). A start agrees when its median distance over the scans after the
 # 30th is below 0.1 m and its 95th percentile below 0.3 m: the thresholds of the localise tests.
 # The table also counts the scans each start stated "confirmed" more than 1 m from the session.
-#   scripts/localise-robustness.sh HARNESS_OUT [OUT_DIR [LOCALISE_ARGS...]]
-# HARNESS_OUT is a robustness harness's output (its p0/aces, p0/intel, ... runs); OUT_DIR defaults
+#   scripts/localise-robustness.sh HARNESS_OUT [OUT_DIR [--zeroed-odometry] [LOCALISE_ARGS...]]
+# With --zeroed-odometry the starts are localised on copies of the logs whose pose fields are all
+# zero (scripts/zero-odometry.py: a log without odometry); the maps stay the sessions'. HARNESS_OUT is a robustness harness's output (its p0/aces, p0/intel, ... runs); OUT_DIR defaults
 # to build/localise-robustness. JOBS runs at a time (default: the number of processors). 60 runs,
 # about 3 minutes on two cores.
 set -euo pipefail
@@ -15,8 +16,21 @@ cd "$(dirname "$0")/.."
 harness=${1:?usage: scripts/localise-robustness.sh HARNESS_OUT [OUT_DIR [LOCALISE_ARGS...]]}
 out=${2:-build/localise-robustness}
 shift $(($# < 2 ? $# : 2))
+zeroed=false
+if [ "${1:-}" = --zeroed-odometry ]; then
+  zeroed=true
+  shift
+fi
 source scripts/public-logs.sh localise-robustness
 mkdir -p "$out"
+logs_dir=$datasets log_suffix=.clf.gz
+if "$zeroed"; then
+  logs_dir=$out/zeroed-logs log_suffix=.clf
+  mkdir -p "$logs_dir"
+  for log in aces intel; do
+    python3 scripts/zero-odometry.py "$datasets/$log.clf.gz" > "$logs_dir/$log.clf"
+  done
+fi
 : > "$out/jobs"
 : > "$out/localise-args"  # LOCALISE_ARGS, NUL-terminated, read by every job
 if [ $# -gt 0 ]; then printf '%s\0' "$@" > "$out/localise-args"; fi
@@ -30,12 +44,12 @@ for map in "$harness"/p*/aces "$harness"/p*/intel; do
   done
 done
 [ -s "$out/jobs" ] || { echo "localise-robustness: no ACES or Intel runs in $harness" >&2; exit 1; }
-export scanloc datasets out
+export scanloc out logs_dir log_suffix
 xargs -0 -n 3 -P "${JOBS:-$(nproc)}" bash -c '
   map=$0 log=$1 start=$2
   mapfile -d "" args < "$out/localise-args"
   name=$(basename "$(dirname "$map")")-$log-$start
-  "$scanloc" localise --point-map "$map/map.pcd" --log "$datasets/$log.clf.gz" \
+  "$scanloc" localise --point-map "$map/map.pcd" --log "$logs_dir/$log$log_suffix" \
     --skip-scans "$start" --max-scans 400 --out "$out/$name" --force --quiet ${args[@]+"${args[@]}"} \
     > "$out/$name.txt" 2>&1 || true
   python3 scripts/localise_agreement.py "$map" "$out/$name" > "$out/$name.json"
