@@ -16,18 +16,9 @@ out=${1:-build/robustness}
 shift || true
 extra=("$@")
 source scripts/public-logs.sh robustness-sessions
-perturbations=(
-  ""
-  "session.localise_translation_m=0.051"
-  "refinement.ceres.translation_tolerance_m=0.0011"
-  "session.insert_translation_m=0.105"
-  "session.localise_translation_m=0.049"
-  "session.insert_translation_m=0.095"
-  "refinement.ceres.translation_tolerance_m=0.0009"
-  "session.localise_rotation_rad=0.037"
-  "refinement.ceres.rotation_tolerance_rad=0.0011"
-  "refinement.ceres.rotation_tolerance_rad=0.0009"
-)
+# The perturbations, one a line ("default": none), shared with the localise tests
+# (tests/localise_datasets_test.cpp).
+mapfile -t perturbations < scripts/perturbations.txt
 mkdir -p "$out"
 rm -f "$out/jobs" "$out/failed"
 # Every job is four NUL-terminated fields (INDEX NAME LOG RELATIONS), so that a path may hold
