@@ -11,6 +11,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,40 +51,48 @@ std::vector<nlohmann::json> Records(const std::string& run) {
   return records;
 }
 
-// The distance of each record's posture from the mapping session's posture of the same scan
-// (matched by timestamp), for the records from scan `from` on.
-std::vector<double> DistancesFromTheSession(const std::vector<nlohmann::json>& records,
-                                            const std::string& map_dir, int from) {
+// The mapping session's postures by timestamp (µs).
+std::map<long long, Pose2D> SessionPostures(const std::string& map_dir) {
   std::map<long long, Pose2D> reference;
   for (const StampedPose& p : ReadTumTrajectory(map_dir + "/trajectory.tum"))
     reference[std::llround(p.timestamp_s * 1e6)] = p.pose;
+  return reference;
+}
+
+// The distance of a record's posture from the session's posture of the same scan (matched by
+// timestamp); none for a scan the session did not pose.
+std::optional<double> DistanceFromTheSession(const nlohmann::json& r,
+                                             const std::map<long long, Pose2D>& reference) {
+  const auto found = reference.find(std::llround(r["timestamp_s"].get<double>() * 1e6));
+  if (found == reference.end()) return std::nullopt;
+  const auto& p = r["T_world_robot"];
+  return std::hypot(p["x_m"].get<double>() - found->second.x_m,
+                    p["y_m"].get<double>() - found->second.y_m);
+}
+
+// The distances of the records from scan `from` on, sorted.
+std::vector<double> DistancesFromTheSession(const std::vector<nlohmann::json>& records,
+                                            const std::string& map_dir, int from) {
+  const std::map<long long, Pose2D> reference = SessionPostures(map_dir);
   std::vector<double> errors;
-  for (const auto& r : records) {
-    if (r["index"].get<int>() < from) continue;
-    const auto found = reference.find(std::llround(r["timestamp_s"].get<double>() * 1e6));
-    if (found == reference.end()) continue;  // a scan the session did not pose
-    const auto& p = r["T_world_robot"];
-    errors.push_back(std::hypot(p["x_m"].get<double>() - found->second.x_m,
-                                p["y_m"].get<double>() - found->second.y_m));
-  }
+  for (const auto& r : records)
+    if (r["index"].get<int>() >= from)
+      if (const std::optional<double> d = DistanceFromTheSession(r, reference))
+        errors.push_back(*d);
   std::sort(errors.begin(), errors.end());
   return errors;
 }
 
-// How many records state "confirmed" at a posture more than `far_m` from the mapping session's
-// posture of the same scan.
+// How many records state "confirmed" at a posture more than `far_m` from the session's posture
+// of the same scan.
 int ConfirmedFarFromTheSession(const std::vector<nlohmann::json>& records,
                                const std::string& map_dir, double far_m) {
-  std::map<long long, Pose2D> reference;
-  for (const StampedPose& p : ReadTumTrajectory(map_dir + "/trajectory.tum"))
-    reference[std::llround(p.timestamp_s * 1e6)] = p.pose;
+  const std::map<long long, Pose2D> reference = SessionPostures(map_dir);
   int far = 0;
   for (const auto& r : records) {
-    const auto found = reference.find(std::llround(r["timestamp_s"].get<double>() * 1e6));
-    if (r["state"] != "confirmed" || found == reference.end()) continue;
-    const auto& p = r["T_world_robot"];
-    far += std::hypot(p["x_m"].get<double>() - found->second.x_m,
-                      p["y_m"].get<double>() - found->second.y_m) > far_m;
+    if (r["state"] != "confirmed") continue;
+    const std::optional<double> d = DistanceFromTheSession(r, reference);
+    far += d && *d > far_m;
   }
   return far;
 }

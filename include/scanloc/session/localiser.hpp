@@ -88,7 +88,7 @@ struct LocaliserOptions {
   // (session.insert_translation_m, session.insert_rotation_rad). Scans from nearly the same place
   // see the same map errors, so they are one view's evidence, not independent trials: on the maps
   // of the robustness harness, ten scans over half a metre of ACES's corridors let a look-alike
-  // that fitted 11–30 % tighter there outmatch the true place, and a wrong place was confirmed
+  // that fitted 11–29 % tighter there outmatch the true place, and a wrong place was confirmed
   // on 4 of 30 starts (docs/BENCHMARKS.md). Off: every localised scan is evidence.
   bool evidence_from_new_views = true;
   int max_hypotheses = 8;  // the best by confirmations, then cost, are kept
