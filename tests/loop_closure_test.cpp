@@ -12,6 +12,7 @@
 #include <limits>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "scanloc/worlds/laser_simulator.hpp"
@@ -498,6 +499,65 @@ TEST(LoopCloser, SkippedScansWithNoLocalisedScanAfterThemKeepTheirPrediction) {
   const std::vector<std::optional<Pose2D>> corrected = closer.CorrectedPostures();
   EXPECT_NEAR(corrected[1]->x_m, 0.02, 1e-12);
   EXPECT_NEAR(corrected[1]->yaw_rad, 0.0, 1e-12);
+}
+
+// A node at the origin, then one scan per 0.1 s moved 0.02 m each by the odometry, each of the
+// kind its letter says: 's' skipped, 'u' unconfirmed with the prediction as its posture, 'g'
+// unconfirmed with another (its cheapest refinement: 0.01 m aside), 'c' confirmed 0.03 m, 0.02 m
+// and 0.01 rad beyond its prediction. Each prediction carries the posture before it.
+LoopCloser MixedRun(const std::string& kinds, std::vector<Pose2D>& postures,
+                    LoopClosureOptions options = Enabled()) {
+  LoopCloser closer(options, LaserMounting{});
+  closer.AddNode(0, LaserScan{}, Pose2D(), std::nullopt);
+  closer.Anchor(0, Pose2D(), true, std::nullopt, AnchorTiming{0.0, false, Pose2D()});
+  postures = {Pose2D()};
+  for (std::size_t k = 1; k <= kinds.size(); ++k) {
+    const char kind = kinds[k - 1];
+    const Pose2D prediction = postures.back() * Pose2D(0.02, 0.0, 0.0);
+    Pose2D posture = prediction;
+    if (kind == 'g') posture = prediction * Pose2D(0.0, 0.01, 0.0);
+    if (kind == 'c') posture = prediction * Pose2D(0.03, 0.02, 0.01);
+    postures.push_back(posture);
+    closer.Anchor(k, posture, kind == 's' || kind == 'c', std::nullopt,
+                  AnchorTiming{0.1 * static_cast<double>(k), kind == 's', prediction});
+  }
+  return closer;
+}
+
+TEST(LoopCloser, UnconfirmedScansThatKeptThePredictionTakeTheNextConfirmedScansCorrectionInShare) {
+  std::vector<Pose2D> postures;
+  const LoopCloser closer = MixedRun("usuc", postures);
+  const std::vector<std::optional<Pose2D>> corrected = closer.CorrectedPostures();
+  ASSERT_EQ(corrected.size(), 5u);
+  EXPECT_NEAR(corrected[4]->yaw_rad, 0.01, 1e-12);
+  const Pose2D prediction = postures[3] * Pose2D(0.02, 0.0, 0.0);
+  const Eigen::Vector2d correction = corrected[4]->Translation() - prediction.Translation();
+  for (const auto& [k, share] : {std::pair<int, double>{1, 0.25}, {2, 0.5}, {3, 0.75}}) {
+    SCOPED_TRACE(k);
+    EXPECT_NEAR(corrected[k]->x_m, postures[k].x_m + share * correction.x(), 1e-12);
+    EXPECT_NEAR(corrected[k]->y_m, postures[k].y_m + share * correction.y(), 1e-12);
+    EXPECT_NEAR(corrected[k]->yaw_rad, share * 0.01, 1e-12);
+  }
+}
+
+TEST(LoopCloser, AnUnconfirmedScanGivenAnotherPostureThanItsPredictionKeepsItAndStartsTheNextRun) {
+  std::vector<Pose2D> postures;
+  const LoopCloser closer = MixedRun("guc", postures);
+  const std::vector<std::optional<Pose2D>> corrected = closer.CorrectedPostures();
+  EXPECT_NEAR(corrected[1]->y_m, 0.01, 1e-12);  // its own posture, no share
+  EXPECT_NEAR(corrected[1]->yaw_rad, 0.0, 1e-12);
+  EXPECT_NEAR(corrected[2]->yaw_rad, 0.5 * 0.01, 1e-12);  // half-way from scan 1 to scan 3
+}
+
+TEST(LoopCloser, UnconfirmedScansKeepTheirPostureWithoutTheSpreadOverUnconfirmed) {
+  LoopClosureOptions options = Enabled();
+  options.spread_over_unconfirmed = false;
+  std::vector<Pose2D> postures;
+  const LoopCloser closer = MixedRun("usuc", postures, options);
+  const std::vector<std::optional<Pose2D>> corrected = closer.CorrectedPostures();
+  EXPECT_NEAR(corrected[1]->yaw_rad, 0.0, 1e-12);
+  EXPECT_NEAR(corrected[3]->yaw_rad, 0.0, 1e-12);
+  EXPECT_NEAR(corrected[2]->yaw_rad, 0.0, 1e-12);  // its run ends at scan 3's zero correction
 }
 
 }  // namespace

@@ -363,6 +363,9 @@ void VisitLoopClosure(C& c, V& v) {
     "the session tracks against the nodes laid within this path (up to twice it), 0: all, m ...");
   v("loop_closure.tracking_min_nodes", l.tracking_min_nodes, Bounds{0, 1e6},
     "... and at least this many newest nodes");
+  v("loop_closure.spread_over_unconfirmed", l.spread_over_unconfirmed,
+    "in the corrected trajectory the unconfirmed scans, as the skipped ones, take a share (by "
+    "time) of the correction the next confirmed scan made to its prediction");
   v("loop_closure.final_match", l.final_match.enabled,
     "at the end of a run the nodes are matched once more on the whole map rendered from the "
     "solved graph, and the graph solved again with the validated matches in it");

@@ -18,6 +18,11 @@ double Distance(const Pose2D& a, const Pose2D& b) {
   return (a.Translation() - b.Translation()).norm();
 }
 
+// The posture as given: an unconfirmed scan's posture is its prediction, copied.
+bool SamePosture(const Pose2D& a, const Pose2D& b) {
+  return a.x_m == b.x_m && a.y_m == b.y_m && a.yaw_rad == b.yaw_rad;
+}
+
 // The odometry holds a motion's heading when the model says it knows it at least as well as a
 // matched step knows its own (in the graph's units). Only then does its edge join the graph: an
 // odometry weaker than the matching in heading would add little, and what its model does not
@@ -136,10 +141,16 @@ void LoopCloser::Anchor(std::size_t iteration, const Pose2D& T_world_robot, bool
   anchor.node = node;
   anchor.T_node_robot = Between(graph_.nodes()[node], T_world_robot);
   anchor.timing = timing;
+  anchor.kept_prediction =
+      !confirmed && timing && !timing->skipped && SamePosture(T_world_robot, timing->prediction);
   if (!confirmed && odometry && nodes_[node].odometry)
     anchor.T_node_robot_odometry = Between(*nodes_[node].odometry, *odometry);
   // No solve has moved the skipped scans' node since they were anchored to it.
-  if (timing && !timing->skipped && iteration > 0 && Skipped(iteration - 1)) {
+  const auto carried = [&](std::size_t i) {
+    return Skipped(i) ||
+           (options_.spread_over_unconfirmed && anchors_[i] && anchors_[i]->kept_prediction);
+  };
+  if (timing && !timing->skipped && iteration > 0 && carried(iteration - 1)) {
     anchor.prediction_node = anchors_[iteration - 1]->node;
     anchor.T_node_prediction = Between(graph_.nodes()[*anchor.prediction_node], timing->prediction);
   }
@@ -148,6 +159,16 @@ void LoopCloser::Anchor(std::size_t iteration, const Pose2D& T_world_robot, bool
 bool LoopCloser::Skipped(std::size_t iteration) const {
   return iteration < anchors_.size() && anchors_[iteration] && anchors_[iteration]->timing &&
          anchors_[iteration]->timing->skipped;
+}
+
+// A skipped scan, or with spread_over_unconfirmed an unconfirmed one that kept its prediction and
+// does not follow the odometry from its node: it takes a share of the next localised scan's
+// correction.
+bool LoopCloser::SharesNextCorrection(std::size_t iteration) const {
+  if (Skipped(iteration)) return true;
+  if (!options_.spread_over_unconfirmed || iteration >= anchors_.size() || !anchors_[iteration])
+    return false;
+  return anchors_[iteration]->kept_prediction && !ByOdometry(*anchors_[iteration]);
 }
 
 // The old nodes the scan is matched on: the nearest node old enough, and the nodes laid just
@@ -570,10 +591,13 @@ void LoopCloser::SpreadSkippedCorrections(std::vector<std::optional<Pose2D>>& po
   for (std::size_t b = 1; b < anchors_.size(); ++b) {
     const std::optional<Anchoring>& last = anchors_[b];
     if (!last || !last->prediction_node) continue;
-    std::size_t first = b;  // the run of skipped scans before b
-    while (first > 0 && Skipped(first - 1)) --first;
+    // One that kept its prediction made no correction: its run goes on to the next scan.
+    if (SharesNextCorrection(b)) continue;
+    std::size_t first = b;  // the run of skipped (or unconfirmed) scans before b
+    while (first > 0 && SharesNextCorrection(first - 1)) --first;
     const std::size_t a = first - 1;  // the localised scan before them
-    if (first == 0 || !anchors_[a] || !anchors_[a]->timing) continue;
+    if (first == b || first == 0 || !anchors_[a] || !anchors_[a]->timing) continue;
+    if (ByOdometry(*anchors_[a])) continue;  // not the posture the run was carried from
     const Pose2D predicted = graph_.nodes()[*last->prediction_node] * last->T_node_prediction;
     const Pose2D& localised = *postures[b];
     const Eigen::Vector3d correction(localised.x_m - predicted.x_m, localised.y_m - predicted.y_m,

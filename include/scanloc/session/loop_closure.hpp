@@ -92,6 +92,12 @@ struct LoopClosureOptions {
   // over the loop, instead of the tracker snapping onto their walls.
   double tracking_path_m = 10.0;
   int tracking_min_nodes = 0;
+  // In the corrected trajectory, the scans before a localised one that were skipped take a share
+  // of the correction it made to its prediction (CorrectedPostures); with this, so do the
+  // unconfirmed scans that kept the prediction, back to the last scan that did not: they were
+  // carried by the same odometry and erred alike. Not those that follow the odometry from their
+  // node (the odometry model trusts it more than the match that would correct it).
+  bool spread_over_unconfirmed = true;
   // At the end of the run, the nodes matched once more on the whole map (final_map_matching.hpp).
   FinalMatchOptions final_match;
   // Throws std::invalid_argument naming the first option out of its domain.
@@ -152,7 +158,8 @@ class LoopCloser {
   // not disprove, rather than an unconfirmed match.
   // With `timing`, a scan that was skipped (not localised: it kept the odometry's prediction)
   // also takes a share of the correction the next localised scan made to its own prediction
-  // (CorrectedPostures).
+  // (CorrectedPostures); with spread_over_unconfirmed, an unconfirmed scan that kept its
+  // prediction does too.
   void Anchor(std::size_t iteration, const Pose2D& T_world_robot, bool confirmed = true,
               const std::optional<Pose2D>& odometry = std::nullopt,
               const std::optional<AnchorTiming>& timing = std::nullopt);
@@ -210,6 +217,8 @@ class LoopCloser {
     Pose2D T_node_robot;
     std::optional<Pose2D> T_node_robot_odometry;  // of an unconfirmed scan
     std::optional<AnchorTiming> timing;
+    // Unconfirmed, and its posture the prediction: on the odometry's chain from the last one.
+    bool kept_prediction = false;
     // A localised scan after skipped ones: its prediction, from the node they are anchored to.
     std::optional<std::size_t> prediction_node;
     Pose2D T_node_prediction;
@@ -222,6 +231,7 @@ class LoopCloser {
 
   bool ByOdometry(const Anchoring& anchor) const;
   bool Skipped(std::size_t iteration) const;
+  bool SharesNextCorrection(std::size_t iteration) const;
   void SpreadSkippedCorrections(std::vector<std::optional<Pose2D>>& postures) const;
   std::vector<std::size_t> OldNodesNear(const Pose2D& T_world_robot, double path_m) const;
   std::optional<ClosureAttempt> Try(const LocalisationOptions& localisation,
