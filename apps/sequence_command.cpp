@@ -140,8 +140,12 @@ void PrintOutcome(const SessionRun& run, const nlohmann::json& summary, const Ru
     if (l.contains("final_match")) {
       const nlohmann::json& f = l["final_match"];
       std::cout << "final map matching: " << f["matched"] << " nodes matched on the whole map, "
-                << f["joined"] << " joined the graph, nodes moved up to " << f["largest_shift_m"]
-                << " m\n";
+                << f["joined"] << " joined the graph";
+      if (f.contains("from_neighbours"))
+        std::cout << " (" << f["from_neighbours"]
+                  << " also matched from where their neighbours put them, " << f["took_neighbours"]
+                  << " joined from there)";
+      std::cout << ", nodes moved up to " << f["largest_shift_m"] << " m\n";
     }
     PrintOdometryModel(l);
   }

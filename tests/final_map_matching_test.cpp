@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "scanloc/maps/point_map.hpp"
+#include "scanloc/session/loop_closure.hpp"
 #include "scanloc/worlds/laser_simulator.hpp"
 #include "scanloc/worlds/robot_path.hpp"
 #include "test_support.hpp"
@@ -143,6 +144,51 @@ TEST(FinalMapMatching, OnAnEmptyMapNothingJoinsAndTheNodesStay) {
 TEST(FinalMapMatching, ANegativeSpacingIsRefused) {
   FinalMatchOptions options;
   options.spacing_m = -0.1;
+  EXPECT_THROW(options.Validate(), std::invalid_argument);
+}
+
+// A session's nodes on the ring, their odometry the truth, all laid where they truly are but node
+// `k`, laid turned by `turn_rad` (its match settled on another heading): the chain's edges hold the
+// turn, its neighbours' odometry does not.
+LoopCloser NodesWithOneTurned(const Ring& ring, std::size_t k, double turn_rad,
+                              double neighbour_sigmas) {
+  LoopClosureOptions options;
+  options.final_match.spacing_m = 0.0;
+  options.final_match.neighbour_sigmas = neighbour_sigmas;
+  LoopCloser closer(options, LaserMounting{});
+  for (std::size_t i = 0; i < ring.truth.size(); ++i) {
+    const Pose2D laid = i == k ? ring.truth[i] * Pose2D(0.0, 0.0, turn_rad) : ring.truth[i];
+    closer.AddNode(i, ring.scans[i], laid,
+                   Eigen::Matrix3d(Eigen::Vector3d(4e-4, 4e-4, 2.5e-5).asDiagonal()),
+                   ring.truth[i]);
+  }
+  return closer;
+}
+
+TEST(FinalMapMatching, ANodeTurnedAwayFromBothNeighboursIsMatchedFromWhereTheyPutIt) {
+  const Ring ring = DriveRing();
+  const std::size_t k = 20;
+  const double turn_rad = 0.5;
+  LoopCloser with = NodesWithOneTurned(ring, k, turn_rad, 3.0);
+  LoopCloser without = NodesWithOneTurned(ring, k, turn_rad, 0.0);
+  const FinalMatchSummary summary =
+      with.MatchOnFinalMap({nullptr, &ring.map}, LocalisationOptions{});
+  without.MatchOnFinalMap({nullptr, &ring.map}, LocalisationOptions{});
+  const double error_with =
+      std::abs(NormalizeAngle(with.graph().nodes()[k].yaw_rad - ring.truth[k].yaw_rad));
+  const double error_without =
+      std::abs(NormalizeAngle(without.graph().nodes()[k].yaw_rad - ring.truth[k].yaw_rad));
+  std::printf("node %zu heading error %.4f rad from its neighbours' postures too, %.4f without\n",
+              k, error_with, error_without);
+  EXPECT_EQ(summary.from_neighbours, 1u);  // the only node that stands out
+  EXPECT_EQ(summary.took_neighbours, 1u);
+  EXPECT_GT(error_without, 0.45);  // its own match cannot turn it back
+  EXPECT_LT(error_with, 0.5 * error_without);
+}
+
+TEST(FinalMapMatching, ANegativeNeighbourSigmasIsRefused) {
+  FinalMatchOptions options;
+  options.neighbour_sigmas = -1.0;
   EXPECT_THROW(options.Validate(), std::invalid_argument);
 }
 

@@ -371,6 +371,10 @@ void VisitLoopClosure(C& c, V& v) {
     "solved graph, and the graph solved again with the validated matches in it");
   v("loop_closure.final_match_spacing_m", l.final_match.spacing_m, Bounds{0, 1e6},
     "... one node per this much path, m (0: every node)");
+  v("loop_closure.final_match_neighbour_sigmas", l.final_match.neighbour_sigmas, Bounds{0, 1e6},
+    "... a node whose heading stands out from where both neighbours put it by the odometry by "
+    "more than this many robust σ is refined from there too, the best validated match kept "
+    "(0: never; 3 measured)");
 }
 
 template <class C, class V>

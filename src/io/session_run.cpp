@@ -321,6 +321,10 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
                                                 {"joined", m->joined},
                                                 {"solve_iterations", m->solve_iterations},
                                                 {"largest_shift_m", m->largest_shift_m}};
+      if (m->from_neighbours > 0) {  // loop_closure.final_match_neighbour_sigmas on
+        summary["loop_closure"]["final_match"]["from_neighbours"] = m->from_neighbours;
+        summary["loop_closure"]["final_match"]["took_neighbours"] = m->took_neighbours;
+      }
       summary["final_match_wall_s"] = m->wall_s;  // a timing, beside the others
     }
   }

@@ -422,12 +422,50 @@ bool LoopCloser::Finish() {
   return largest_shift_m > options_.render_min_shift_m;
 }
 
+// Where node i's neighbour j puts it by the odometry (nothing without odometry at either).
+std::optional<Pose2D> LoopCloser::NeighbourStart(std::size_t i, std::size_t j) const {
+  if (j >= nodes_.size() || !nodes_[i].odometry || !nodes_[j].odometry) return std::nullopt;
+  return graph_.nodes()[j] * Between(*nodes_[j].odometry, *nodes_[i].odometry);
+}
+
+// Where node i's neighbours put it by the odometry, when both put its heading farther from its
+// own than `bound_rad`: a node whose match settled on another heading than both its neighbours'.
+std::vector<Pose2D> LoopCloser::NeighbourStarts(std::size_t i, double bound_rad) const {
+  const std::optional<Pose2D> before = i > 0 ? NeighbourStart(i, i - 1) : std::nullopt;
+  const std::optional<Pose2D> after = NeighbourStart(i, i + 1);
+  if (!before || !after) return {};
+  const double own = graph_.nodes()[i].yaw_rad;
+  if (std::abs(NormalizeAngle(before->yaw_rad - own)) <= bound_rad ||
+      std::abs(NormalizeAngle(after->yaw_rad - own)) <= bound_rad)
+    return {};
+  return {*before, *after};
+}
+
+// The bound beyond which a node's heading stands out from its neighbours': k robust standard
+// deviations (1.4826 × the median absolute) of every node's heading from where the node before
+// puts it by the odometry.
+double LoopCloser::NeighbourHeadingBound(double k) const {
+  std::vector<double> misses;
+  for (std::size_t i = 1; i < nodes_.size(); ++i)
+    if (const std::optional<Pose2D> start = NeighbourStart(i, i - 1))
+      misses.push_back(std::abs(NormalizeAngle(start->yaw_rad - graph_.nodes()[i].yaw_rad)));
+  if (misses.empty()) return HUGE_VAL;
+  const auto middle = misses.begin() + static_cast<std::ptrdiff_t>(misses.size() / 2);
+  std::nth_element(misses.begin(), middle, misses.end());
+  return k * 1.4826 * *middle;
+}
+
 FinalMatchSummary LoopCloser::MatchOnFinalMap(const MapView& map,
                                               const LocalisationOptions& localisation) {
   std::vector<NodeScan> scans;
   scans.reserve(nodes_.size());
-  for (std::size_t i = 0; i < nodes_.size(); ++i)
-    scans.push_back({i, &nodes_[i].scan, nodes_[i].path_m});
+  const double bound_rad = options_.final_match.neighbour_sigmas > 0.0
+                               ? NeighbourHeadingBound(options_.final_match.neighbour_sigmas)
+                               : HUGE_VAL;
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    scans.push_back({i, &nodes_[i].scan, nodes_[i].path_m, {}});
+    scans.back().other_starts = NeighbourStarts(i, bound_rad);
+  }
   local_map_.reset();  // the solve moves the nodes it was rendered from
   return MatchNodesOnFinalMap(map, scans, mounting_, localisation, options_.final_match,
                               options_.sigma_floor_m, options_.sigma_floor_rad, options_.graph,

@@ -34,6 +34,12 @@ struct FinalMatchOptions {
   // One node matched per this much path (the first node, then the first one this far along the
   // path from the last one matched); 0 matches every node, m.
   double spacing_m = 0.5;
+  // A node whose heading stands out from where both its neighbours put it by the odometry, by
+  // more than this many robust standard deviations of every node's (from the one before), is
+  // refined from those two postures too, and the best match the rules validate is kept; 0 (the
+  // default): never. 3 halves acapulco's worst relation but moves ACES nodes on which the
+  // localiser then confirms a corridor look-alike (docs/BENCHMARKS.md).
+  double neighbour_sigmas = 0.0;
   // Throws std::invalid_argument naming the first option out of its domain.
   void Validate() const;
 };
@@ -43,13 +49,18 @@ struct NodeScan {
   std::size_t node = 0;
   const LaserScan* scan = nullptr;
   double path_m = 0.0;
+  // Other postures to refine from besides the node's own: where its neighbours put it by the
+  // odometry (a node whose own match settled on a wrong heading, between neighbours that did not).
+  std::vector<Pose2D> other_starts;
 };
 
 struct FinalMatchSummary {
-  std::size_t matched = 0;       // nodes whose scans were matched on the map
-  std::size_t joined = 0;        // of those, validated, pinned matches that joined the graph
-  int solve_iterations = 0;      // of the solve with them
-  double largest_shift_m = 0.0;  // the largest node displacement the solve made
+  std::size_t matched = 0;          // nodes whose scans were matched on the map
+  std::size_t joined = 0;           // of those, validated, pinned matches that joined the graph
+  std::size_t from_neighbours = 0;  // matched from their neighbours' postures too
+  std::size_t took_neighbours = 0;  // of those, joined with the match from a neighbour's posture
+  int solve_iterations = 0;         // of the solve with them
+  double largest_shift_m = 0.0;     // the largest node displacement the solve made
   double wall_s = 0.0;
 };
 

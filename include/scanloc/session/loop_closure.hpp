@@ -232,6 +232,9 @@ class LoopCloser {
   bool ByOdometry(const Anchoring& anchor) const;
   bool Skipped(std::size_t iteration) const;
   bool SharesNextCorrection(std::size_t iteration) const;
+  std::optional<Pose2D> NeighbourStart(std::size_t i, std::size_t j) const;
+  std::vector<Pose2D> NeighbourStarts(std::size_t i, double bound_rad) const;
+  double NeighbourHeadingBound(double k) const;
   void SpreadSkippedCorrections(std::vector<std::optional<Pose2D>>& postures) const;
   std::vector<std::size_t> OldNodesNear(const Pose2D& T_world_robot, double path_m) const;
   std::optional<ClosureAttempt> Try(const LocalisationOptions& localisation,
