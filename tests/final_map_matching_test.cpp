@@ -1,6 +1,7 @@
 // The final map matching over a synthetic ring building: nodes displaced from the map they laid
-// are pulled back onto it, a tight chain holds where the matches disagree by their noise, and one
-// node is matched per spacing of path.
+// are pulled back onto it, a tight chain holds where the matches disagree by their noise, one
+// node is matched per spacing of path, and a node turned away from both its neighbours is matched
+// from where their odometry puts it (loop_closure.final_match_neighbour_sigmas).
 
 #include "scanloc/session/final_map_matching.hpp"
 

@@ -65,9 +65,10 @@ struct FinalMatchSummary {
 };
 
 // Matches the scans of `nodes` (in path order, spaced as the options say) on `map`, each from its
-// node's posture in `graph`; the validated ones whose refinement has a covariance and is not
-// degenerate join a copy of the graph as described above, and `graph`'s nodes take the solved
-// postures (its edges stay as they were). Nothing is solved when no match joined.
+// node's posture in `graph` and from its other_starts (the best ranked of those refinements the
+// rules validate is the node's match); the validated ones whose refinement has a covariance and
+// is not degenerate join a copy of the graph as described above, and `graph`'s nodes take the
+// solved postures (its edges stay as they were). Nothing is solved when no match joined.
 FinalMatchSummary MatchNodesOnFinalMap(const MapView& map, const std::vector<NodeScan>& nodes,
                                        const LaserMounting& mounting,
                                        const LocalisationOptions& localisation,
