@@ -459,12 +459,11 @@ FinalMatchSummary LoopCloser::MatchOnFinalMap(const MapView& map,
                                               const LocalisationOptions& localisation) {
   std::vector<NodeScan> scans;
   scans.reserve(nodes_.size());
-  const double bound_rad = options_.final_match.neighbour_sigmas > 0.0
-                               ? NeighbourHeadingBound(options_.final_match.neighbour_sigmas)
-                               : HUGE_VAL;
+  const double sigmas = options_.final_match.neighbour_sigmas;
+  const double bound_rad = sigmas > 0.0 ? NeighbourHeadingBound(sigmas) : HUGE_VAL;
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
     scans.push_back({i, &nodes_[i].scan, nodes_[i].path_m, {}});
-    scans.back().other_starts = NeighbourStarts(i, bound_rad);
+    if (sigmas > 0.0) scans.back().other_starts = NeighbourStarts(i, bound_rad);
   }
   local_map_.reset();  // the solve moves the nodes it was rendered from
   return MatchNodesOnFinalMap(map, scans, mounting_, localisation, options_.final_match,
