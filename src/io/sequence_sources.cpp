@@ -95,13 +95,16 @@ CarmenIterationSource::CarmenIterationSource(const std::string& path, CarmenOpti
 bool CarmenIterationSource::Next(Iteration& iteration) {
   CarmenRecord record;
   while (reader_.Next(record)) {
-    if (record.velocity_mps) reversal_.AddVelocity(*record.velocity_mps);
+    // Every odometry the log carries passes the repair, so that each increment is judged by the
+    // velocity logged over it.
+    std::optional<Pose2D> odometry;
+    if (record.has_odometry)
+      odometry = repair_ ? reversal_.Follow(record.odometry, record.velocity_mps) : record.odometry;
     if (record.kind != CarmenRecord::Kind::kLaser) continue;
     iteration = Iteration{};
     iteration.timestamp_s = record.timestamp_s;
     iteration.scan = std::move(record.scan);
-    if (record.has_odometry)
-      iteration.odometry = repair_ ? reversal_.Repair(record.odometry) : record.odometry;
+    iteration.odometry = odometry;
     iteration.origin = path_ + ":" + std::to_string(record.line);
     timestamps_.Add(iteration.timestamp_s);
     return true;

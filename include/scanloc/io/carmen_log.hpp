@@ -28,8 +28,8 @@ struct CarmenOptions {
   // The laser's distance ahead of the robot's base along its heading; overrides the log's
   // PARAM robot_frontlaser_offset when set. Metres.
   std::optional<double> laser_offset_m;
-  // For sequences read scan by scan (CarmenIterationSource): repair odometry increments that move
-  // forward while every ODOM logged in between reports a negative velocity
+  // For sequences read scan by scan (CarmenIterationSource): repair odometry increments, message
+  // by message, that move forward while the velocity logged over them is negative
   // (OdometryReversalRepair).
   bool repair_reversed_odometry = true;
   // Throws std::invalid_argument for a non-positive or non-finite range or no-return value, or a
