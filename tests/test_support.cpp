@@ -7,6 +7,7 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -117,6 +118,32 @@ void WriteWithZeroedOdometry(const std::string& log, const std::string& path) {
     for (const std::string& field : fields) text += (text.empty() ? "" : " ") + field;
     text += "\n";
     gzwrite(out, text.data(), static_cast<unsigned>(text.size()));
+  }
+  gzclose(in);
+  gzclose(out);
+}
+
+void WriteSparse(const std::string& log, const std::string& path) {
+  gzFile in = gzopen((testing::DatasetsDir() + "/" + log + ".clf.gz").c_str(), "rb");
+  gzFile out = gzopen(path.c_str(), "wb");
+  ASSERT_TRUE(in != nullptr && out != nullptr);
+  std::vector<char> buffer(1 << 16);
+  std::optional<Pose2D> kept;
+  while (gzgets(in, buffer.data(), static_cast<int>(buffer.size())) != nullptr) {
+    std::istringstream line(buffer.data());
+    std::vector<std::string> fields{std::istream_iterator<std::string>(line), {}};
+    if (fields.size() > 2 && fields[0] == "FLASER") {
+      const std::size_t odometry = 2 + std::stoul(fields[1]) + 3;  // odom_x odom_y odom_theta
+      ASSERT_LT(odometry + 2, fields.size());
+      const Pose2D pose{std::stod(fields[odometry]), std::stod(fields[odometry + 1]),
+                        std::stod(fields[odometry + 2])};
+      if (kept) {
+        const Pose2D step = Between(*kept, pose);
+        if (std::hypot(step.x_m, step.y_m) < 0.8 && std::abs(step.yaw_rad) < 0.3) continue;
+      }
+      kept = pose;
+    }
+    gzputs(out, buffer.data());
   }
   gzclose(in);
   gzclose(out);

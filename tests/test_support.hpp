@@ -48,6 +48,12 @@ std::string DatasetsDir();
 // odometry was never filled in. Fails the test when a file cannot be opened.
 void WriteWithZeroedOdometry(const std::string& log, const std::string& path);
 
+// A copy of the public log `log` at `path`, gzip compressed, that keeps a FLASER only after its
+// odometry moved 0.8 m or turned 0.3 rad from the last one kept (a log kept as the Radish logs
+// are, a scan every metre or so); every other line (ODOM, PARAM) is kept. Fails the test when a
+// file cannot be opened.
+void WriteSparse(const std::string& log, const std::string& path);
+
 // Why a test that needs the public logs was skipped.
 inline constexpr char kNoDatasets[] =
     "public logs not found: set SCANLOC_DATASETS (default ../shared/datasets)";
