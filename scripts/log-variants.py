@@ -1,0 +1,108 @@
+#!/usr/bin/env python3
+"""Derives, from a benchmark log with real odometry, a variant as another robot might have logged it.
+
+  scripts/log-variants.py sparse LOG.clf.gz REFERENCE OUT.clf OUT.relations
+  scripts/log-variants.py short-range LOG.clf.gz OUT.clf [RANGE_M]
+
+- sparse: only the scans with a reference pose, one after every 0.8 m or 0.3 rad of the log's
+  odometry (a log kept as the Radish logs are, a scan every metre or so). Every other line (ODOM,
+  PARAM) is kept. The relations are built from REFERENCE (`t x y theta`, the corrected poses) as
+  the Radish relations are: each kept scan to the kept scans about 1 s and 10 s later, and 1,500
+  random pairs (seed 1).
+- short-range: every FLASER reading beyond RANGE_M (default 5.6, a Hokuyo URG-04LX) becomes
+  RANGE_M, the no-return value of such a laser. The log's own relations still apply.
+"""
+import bisect
+import gzip
+import math
+import random
+import sys
+
+KEEP_M, KEEP_RAD = 0.8, 0.3
+
+
+def lines(path):
+    opener = gzip.open if path.endswith(".gz") else open
+    with opener(path, "rt") as log:
+        yield from log
+
+
+def flaser(fields):
+    """(beam count, the fields after the ranges) of a FLASER line's fields."""
+    n = int(fields[1])
+    return n, fields[2 + n:]
+
+
+def read_reference(path):
+    poses = {}
+    for line in open(path):
+        f = line.split()
+        if len(f) == 4:
+            poses[round(float(f[0]), 6)] = tuple(map(float, f[1:]))
+    return poses
+
+
+def relative(a, b):
+    dx, dy = b[0] - a[0], b[1] - a[1]
+    c, s = math.cos(a[2]), math.sin(a[2])
+    return c * dx + s * dy, -s * dx + c * dy, math.remainder(b[2] - a[2], 2 * math.pi)
+
+
+def sparse(log, reference_path, out_log, out_relations):
+    reference = read_reference(reference_path)
+    kept, last = [], None
+    with open(out_log, "w") as out:
+        for line in lines(log):
+            f = line.split()
+            if f and f[0] == "FLASER":
+                _, rest = flaser(f)
+                t = round(float(rest[6]), 6)
+                odometry = tuple(map(float, rest[3:6]))
+                if t not in reference:
+                    continue
+                if last is not None:
+                    step = relative(last, odometry)
+                    if math.hypot(step[0], step[1]) < KEEP_M and abs(step[2]) < KEEP_RAD:
+                        continue
+                last = odometry
+                kept.append(t)
+            out.write(line)
+    pairs = []
+    for i, t in enumerate(kept):
+        for dt in (1.0, 10.0):
+            j = bisect.bisect_left(kept, t + dt)
+            if i < j < len(kept):
+                pairs.append((t, kept[j]))
+    rng = random.Random(1)
+    for _ in range(1500):
+        i, j = sorted(rng.sample(range(len(kept)), 2))
+        pairs.append((kept[i], kept[j]))
+    with open(out_relations, "w") as out:
+        for a, b in pairs:
+            x, y, yaw = relative(reference[a], reference[b])
+            out.write("%.6f %.6f %.6f %.6f 0 0 0 %.6f\n" % (a, b, x, y, yaw))
+    print("%s: %d scans kept, %d relations" % (out_log, len(kept), len(pairs)), file=sys.stderr)
+
+
+def short_range(log, out_log, range_m):
+    with open(out_log, "w") as out:
+        for line in lines(log):
+            f = line.split()
+            if f and f[0] == "FLASER":
+                n, rest = flaser(f)
+                ranges = ["%.3f" % min(float(r), range_m) for r in f[2:2 + n]]
+                line = " ".join(f[:2] + ranges + rest) + "\n"
+            out.write(line)
+
+
+def main():
+    if len(sys.argv) >= 6 and sys.argv[1] == "sparse":
+        sparse(*sys.argv[2:6])
+    elif len(sys.argv) in (4, 5) and sys.argv[1] == "short-range":
+        short_range(sys.argv[2], sys.argv[3], float(sys.argv[4]) if len(sys.argv) == 5 else 5.6)
+    else:
+        sys.exit(__doc__.strip())
+
+
+if __name__ == "__main__":
+    main()
