@@ -149,7 +149,7 @@ std::vector<Relation> LocalRelations(const std::string& log, const std::string& 
 
 // Fr079 kept as a sparse log is: a scan after every 0.8 m or 0.3 rad of odometry (802 of 4,934),
 // every ODOM kept. Between two scans the robot may drive forward and then reverse, which the log's
-// odometry records as forward. Measured 2026-12-06 on the 1,593 local relations: 0.0477 ± 0.0392
+// odometry records as forward. Measured 2026-12-06 on the 1,593 local relations: 0.0464 ± 0.0364
 // m, max 0.54 m. When the reversal repair judged a scan's increment by every velocity since the
 // scan before, none of those increments was repaired and the session lost its track for 46
 // scans: 0.143 ± 0.428 m, max 4.72 m.

@@ -95,16 +95,18 @@ CarmenIterationSource::CarmenIterationSource(const std::string& path, CarmenOpti
 bool CarmenIterationSource::Next(Iteration& iteration) {
   CarmenRecord record;
   while (reader_.Next(record)) {
-    // Every odometry the log carries passes the repair, so that each increment is judged by the
-    // velocity logged over it.
-    std::optional<Pose2D> odometry;
-    if (record.has_odometry)
-      odometry = repair_ ? reversal_.Follow(record.odometry, record.velocity_mps) : record.odometry;
-    if (record.kind != CarmenRecord::Kind::kLaser) continue;
+    if (record.kind != CarmenRecord::Kind::kLaser) {
+      if (record.velocity_mps)
+        reversal_.AddOdometry(record.odometry, *record.velocity_mps, record.timestamp_s);
+      continue;
+    }
     iteration = Iteration{};
     iteration.timestamp_s = record.timestamp_s;
     iteration.scan = std::move(record.scan);
-    iteration.odometry = odometry;
+    if (record.has_odometry)
+      iteration.odometry =
+          repair_ ? reversal_.Repair(record.odometry, record.velocity_mps, record.timestamp_s)
+                  : record.odometry;
     iteration.origin = path_ + ":" + std::to_string(record.line);
     timestamps_.Add(iteration.timestamp_s);
     return true;
