@@ -438,8 +438,7 @@ SparseSteps SparseOdometrySteps(const std::string& log, const std::string& refer
   while (source.Next(next)) {
     if (kept) {
       const Pose2D odometry = Between(*kept->odometry, *next.odometry);
-      if (std::hypot(odometry.x_m, odometry.y_m) < 0.8 && std::abs(odometry.yaw_rad) < 0.3)
-        continue;
+      if (!testing::SparseKeeps(odometry)) continue;
       const auto a = truth.find(std::llround(kept->timestamp_s * 1e3));
       const auto b = truth.find(std::llround(next.timestamp_s * 1e3));
       if (a != truth.end() && b != truth.end()) {

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <mutex>
 #include <optional>
@@ -102,7 +103,12 @@ std::string DatasetsDir() {
   return std::filesystem::is_directory(dir) ? dir : "";
 }
 
-void WriteWithZeroedOdometry(const std::string& log, const std::string& path) {
+namespace {
+
+// Copies the public log `log` to `path`, gzip compressed, a line at a time as its fields:
+// `edit` may change them and returns false to leave the line out.
+void CopyLog(const std::string& log, const std::string& path,
+             const std::function<bool(std::vector<std::string>&)>& edit) {
   gzFile in = gzopen((testing::DatasetsDir() + "/" + log + ".clf.gz").c_str(), "rb");
   gzFile out = gzopen(path.c_str(), "wb");
   ASSERT_TRUE(in != nullptr && out != nullptr);
@@ -110,10 +116,7 @@ void WriteWithZeroedOdometry(const std::string& log, const std::string& path) {
   while (gzgets(in, buffer.data(), static_cast<int>(buffer.size())) != nullptr) {
     std::istringstream line(buffer.data());
     std::vector<std::string> fields{std::istream_iterator<std::string>(line), {}};
-    if (fields.size() > 2 && fields[0] == "FLASER") {
-      const std::size_t beams = std::stoul(fields[1]);
-      for (std::size_t f = 2 + beams; f < 8 + beams && f < fields.size(); ++f) fields[f] = "0";
-    }
+    if (!edit(fields)) continue;
     std::string text;
     for (const std::string& field : fields) text += (text.empty() ? "" : " ") + field;
     text += "\n";
@@ -123,30 +126,38 @@ void WriteWithZeroedOdometry(const std::string& log, const std::string& path) {
   gzclose(out);
 }
 
-void WriteSparse(const std::string& log, const std::string& path) {
-  gzFile in = gzopen((testing::DatasetsDir() + "/" + log + ".clf.gz").c_str(), "rb");
-  gzFile out = gzopen(path.c_str(), "wb");
-  ASSERT_TRUE(in != nullptr && out != nullptr);
-  std::vector<char> buffer(1 << 16);
-  std::optional<Pose2D> kept;
-  while (gzgets(in, buffer.data(), static_cast<int>(buffer.size())) != nullptr) {
-    std::istringstream line(buffer.data());
-    std::vector<std::string> fields{std::istream_iterator<std::string>(line), {}};
+}  // namespace
+
+void WriteWithZeroedOdometry(const std::string& log, const std::string& path) {
+  CopyLog(log, path, [](std::vector<std::string>& fields) {
     if (fields.size() > 2 && fields[0] == "FLASER") {
-      const std::size_t odometry = 2 + std::stoul(fields[1]) + 3;  // odom_x odom_y odom_theta
-      ASSERT_LT(odometry + 2, fields.size());
-      const Pose2D pose{std::stod(fields[odometry]), std::stod(fields[odometry + 1]),
-                        std::stod(fields[odometry + 2])};
-      if (kept) {
-        const Pose2D step = Between(*kept, pose);
-        if (std::hypot(step.x_m, step.y_m) < 0.8 && std::abs(step.yaw_rad) < 0.3) continue;
-      }
-      kept = pose;
+      const std::size_t beams = std::stoul(fields[1]);
+      for (std::size_t f = 2 + beams; f < 8 + beams && f < fields.size(); ++f) fields[f] = "0";
     }
-    gzputs(out, buffer.data());
-  }
-  gzclose(in);
-  gzclose(out);
+    return true;
+  });
+}
+
+void WriteSparse(const std::string& log, const std::string& path) {
+  std::optional<Pose2D> kept;
+  CopyLog(log, path, [&](std::vector<std::string>& fields) {
+    if (fields.size() <= 2 || fields[0] != "FLASER") return true;
+    const std::size_t odometry = 2 + std::stoul(fields[1]) + 3;  // odom_x odom_y odom_theta
+    if (odometry + 2 >= fields.size()) {
+      ADD_FAILURE() << "a FLASER line of " << log << " without its odometry";
+      return true;
+    }
+    const Pose2D pose{std::stod(fields[odometry]), std::stod(fields[odometry + 1]),
+                      std::stod(fields[odometry + 2])};
+    if (kept && !SparseKeeps(Between(*kept, pose))) return false;
+    kept = pose;
+    return true;
+  });
+}
+
+bool SparseKeeps(const Pose2D& odometry_step) {
+  return std::hypot(odometry_step.x_m, odometry_step.y_m) >= kSparseKeepM ||
+         std::abs(odometry_step.yaw_rad) >= kSparseKeepRad;
 }
 
 namespace {

@@ -49,10 +49,15 @@ std::string DatasetsDir();
 void WriteWithZeroedOdometry(const std::string& log, const std::string& path);
 
 // A copy of the public log `log` at `path`, gzip compressed, that keeps a FLASER only after its
-// odometry moved 0.8 m or turned 0.3 rad from the last one kept (a log kept as the Radish logs
-// are, a scan every metre or so); every other line (ODOM, PARAM) is kept. Fails the test when a
-// file cannot be opened.
+// odometry moved kSparseKeepM or turned kSparseKeepRad from the last one kept (a log kept as the
+// Radish logs are, a scan every metre or so); every other line (ODOM, PARAM) is kept. Fails the
+// test when a file cannot be opened.
 void WriteSparse(const std::string& log, const std::string& path);
+
+// A sparse log keeps a scan once the odometry moved this far or turned this much since the last
+// scan kept (m, rad): SparseKeeps says whether a step from it does.
+constexpr double kSparseKeepM = 0.8, kSparseKeepRad = 0.3;
+bool SparseKeeps(const Pose2D& odometry_step);
 
 // Why a test that needs the public logs was skipped.
 inline constexpr char kNoDatasets[] =

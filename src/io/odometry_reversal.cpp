@@ -32,6 +32,10 @@ void OdometryReversalRepair::AddOdometry(const Pose2D& logged, double tv_mps, do
   odometry_logged_ = logged;
   odometry_velocity_mps_ = tv_mps;
   odometry_timestamp_s_ = timestamp_s;
+  NoteVelocity(tv_mps);
+}
+
+void OdometryReversalRepair::NoteVelocity(double tv_mps) {
   max_velocity_mps_ = velocities_ == 0 ? tv_mps : std::max(max_velocity_mps_, tv_mps);
   ++velocities_;
 }
@@ -46,11 +50,7 @@ bool OdometryReversalRepair::InOdometryFrame(const Pose2D& logged, double timest
 
 Pose2D OdometryReversalRepair::Repair(const Pose2D& logged, std::optional<double> velocity_mps,
                                       double timestamp_s) {
-  if (velocity_mps) {
-    max_velocity_mps_ =
-        velocities_ == 0 ? *velocity_mps : std::max(max_velocity_mps_, *velocity_mps);
-    ++velocities_;
-  }
+  if (velocity_mps) NoteVelocity(*velocity_mps);
   Pose2D repaired;
   if (InOdometryFrame(logged, timestamp_s)) {
     // The scans follow the ODOM chain's correction; their own chain is kept in step with it.

@@ -50,6 +50,8 @@ class OdometryReversalRepair {
   };
 
   bool InOdometryFrame(const Pose2D& logged, double timestamp_s) const;
+  // A velocity logged since the previous scan.
+  void NoteVelocity(double tv_mps);
 
   Chain odometry_, scans_;
   std::optional<Pose2D> odometry_logged_;  // the latest ODOM's
