@@ -190,6 +190,20 @@ TEST(PoseGraph, AnEdgesInformationIsReplacedAndAnInactiveEdgeNoLongerPulls) {
   EXPECT_THROW(graph.SetInformation(0, -Information(0.01, 0.01)), std::invalid_argument);
 }
 
+TEST(PoseGraph, AnEdgesMeasurementIsReplacedWhenItsNodeMoved) {
+  PoseGraph graph;
+  graph.AddNode(Pose2D(0.0, 0.0, 0.0));
+  graph.AddNode(Pose2D(1.0, 0.0, 0.1));
+  graph.AddEdge({0, 1, Pose2D(1.0, 0.0, 0.1), Information(0.01, 0.01), EdgeKind::kSequential});
+  graph.SetNode(1, Pose2D(1.0, 0.0, 0.0));
+  graph.SetMeasurement(0, Pose2D(1.0, 0.0, 2.0 * M_PI));  // stored normalised
+  EXPECT_NEAR(graph.edges()[0].T_from_to.yaw_rad, 0.0, 1e-12);
+  graph.Optimise();
+  EXPECT_NEAR(graph.nodes()[1].yaw_rad, 0.0, 1e-9);  // nothing pulls it back to 0.1 rad
+  EXPECT_THROW(graph.SetMeasurement(1, Pose2D()), std::invalid_argument);
+  EXPECT_THROW(graph.SetMeasurement(0, Pose2D(NAN, 0.0, 0.0)), std::invalid_argument);
+}
+
 TEST(PoseGraph, InvalidEdgesAndNodesAreRefusedNamingTheProblem) {
   PoseGraph graph;
   graph.AddNode(Pose2D());

@@ -123,6 +123,7 @@ TEST(RecordFormat, TheLineWrittenIsWhatDumpWritesForItsValueWithEveryPartPresent
   ASSERT_NE(record.Kept(), nullptr);
   record.lost = record.recovered = record.beyond_odometry = true;
   record.correction_bound = CorrectionBound{0.25, 0.125};
+  record.turn_dispute = TurnDispute{{1.0, 2.0, 0.5}, 0.1, 0.02, -0.08};
   record.state = "tentative";
   record.hypotheses.push_back({});
   record.hypotheses.back().T_world_robot = {1.0, 2.0, 0.5};
@@ -140,8 +141,9 @@ TEST(RecordFormat, TheLineWrittenIsWhatDumpWritesForItsValueWithEveryPartPresent
   EXPECT_EQ(line, value.dump());
   for (const char* key : {"lost", "recovered", "beyond_odometry", "correction_bound_m_rad", "state",
                           "posed", "hypotheses", "discarded", "closure", "search", "candidates",
-                          "chosen", "refinement", "refined_candidates"})
+                          "chosen", "refinement", "refined_candidates", "turn_disputed_by_closure"})
     EXPECT_TRUE(value.contains(key)) << key;
+  EXPECT_EQ(value["turn_disputed_by_closure"]["T_world_robot_tracked"]["yaw_rad"], 0.5);
   EXPECT_TRUE(value["closure"].contains("T_old_robot"));
   EXPECT_EQ(value["search"]["found"], 2);
 }

@@ -366,6 +366,10 @@ void VisitLoopClosure(C& c, V& v) {
   v("loop_closure.spread_over_unconfirmed", l.spread_over_unconfirmed,
     "in the corrected trajectory the unconfirmed scans, as the skipped ones, take a share (by "
     "time) of the correction the next confirmed scan made to its prediction");
+  v("loop_closure.dispute_turn_of_bound", l.dispute_turn_of_bound, Bounds{0, 100},
+    "a heading correction beyond this fraction of the correction gate's bound is withdrawn when "
+    "the closure tried at the same scan (validated, pending) holds the prediction's heading "
+    "within agree_rad and the correction's beyond it: the scan takes the prediction (0: off)");
   v("loop_closure.final_match", l.final_match.enabled,
     "at the end of a run the nodes are matched once more on the whole map rendered from the "
     "solved graph, and the graph solved again with the validated matches in it");

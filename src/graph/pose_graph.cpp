@@ -55,6 +55,13 @@ void PoseGraph::SetNode(std::size_t index, const Pose2D& T_world_node) {
   nodes_[index] = T_world_node.Normalized();
 }
 
+void PoseGraph::SetMeasurement(std::size_t index, const Pose2D& T_from_to) {
+  if (index >= edges_.size())
+    throw std::invalid_argument("no pose graph edge " + std::to_string(index));
+  if (!IsFinite(T_from_to)) throw std::invalid_argument("pose graph measurement is not finite");
+  edges_[index].T_from_to = T_from_to.Normalized();
+}
+
 void PoseGraph::AddEdge(const PoseGraphEdge& edge) {
   const std::string name =
       "pose graph edge " + std::to_string(edge.from) + " → " + std::to_string(edge.to);

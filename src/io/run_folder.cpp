@@ -170,6 +170,17 @@ void WriteLocalisation(JsonWriter& out, const IterationRecord& r) {
     out.Key(keys::kBeyondOdometry);
     WriteJson(out, kept->T_world_robot);
   }
+  // The posture a closure's dispute withdrew (turn_dispute.hpp): the scan took the prediction.
+  if (r.turn_dispute) {
+    out.Key(keys::kTurnDisputed);
+    out.BeginObject();
+    out.Key(keys::kTracked);
+    WriteJson(out, r.turn_dispute->T_world_robot_tracked);
+    out.Member(keys::kCorrectionRad, r.turn_dispute->correction_rad);
+    out.Member(keys::kClosureFromPredictionRad, r.turn_dispute->closure_from_prediction_rad);
+    out.Member(keys::kClosureFromTrackedRad, r.turn_dispute->closure_from_tracked_rad);
+    out.EndObject();
+  }
   out.Key(keys::kRefinement);
   WriteJson(out, *kept->refinement);
   out.Key(keys::kRefinedCandidates);

@@ -126,6 +126,7 @@ void SessionCounts::Add(const IterationRecord& record) {
   odometry_frozen += record.odometry_frozen;
   recoveries += record.recovered;
   refused_corrections += record.beyond_odometry;
+  disputed_turns += record.turn_dispute.has_value();
   lost_stretches += record.lost && !was_lost;
   was_lost = record.lost;
   localisation = localisation || !record.state.empty();
@@ -278,6 +279,7 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
       {"odometry_from_scans", c.odometry_from_scans},
       {"recoveries", c.recoveries},
       {"refused_corrections", c.refused_corrections},
+      {"turns_disputed_by_closures", c.disputed_turns},
       {"lost_at_end", c.was_lost},
       {"map_points", run.session ? run.session->point_map().live_size() : 0},
       {"wall_time_s", wall_s},

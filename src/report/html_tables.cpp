@@ -110,6 +110,7 @@ std::string SummaryTable(const json& summary, const std::vector<IterationRow>& r
       {"wide_searches", "wide searches"},
       {"recoveries", "recoveries"},
       {"refused_corrections", "corrections refused"},
+      {"turns_disputed_by_closures", "turns disputed by closures"},
       {"localised_without_odometry", "scans localised without odometry"},
       {"motion_searches", "searches over the motion seen lately"},
       {"odometry_frozen_scans", "scans whose odometry had not moved while the ranges did"},

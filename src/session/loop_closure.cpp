@@ -95,6 +95,7 @@ void LoopClosureOptions::Validate() const {
   require(distinct_m >= 0.0 && distinct_rad >= 0.0, "distinct_m and distinct_rad must be >= 0");
   require(confirm_after >= 1, "confirm_after must be >= 1");
   require(agree_m >= 0.0 && agree_rad >= 0.0, "agree_m and agree_rad must be >= 0");
+  require(dispute_turn_of_bound >= 0.0, "dispute_turn_of_bound must be >= 0");
   require(sigma_floor_m > 0.0 && sigma_floor_rad > 0.0, "sigma floors must be positive");
   require(graph.closure_loss_scale >= 0.0 && graph.closure_rejection_chi2 >= 0.0 &&
               graph.max_iterations >= 1,
@@ -129,6 +130,21 @@ void LoopCloser::AddNode(std::size_t iteration, const LaserScan& scan, const Pos
                   EdgeKind::kSequential});
   nodes_.back().sequential_covariance = graph_.edges().back().information.inverse();
   if (odometry_model_.learned()) WeighOdometry(node);
+}
+
+void LoopCloser::MoveNewestNode(const Pose2D& T_world_robot) {
+  if (nodes_.empty()) throw std::logic_error("LoopCloser::MoveNewestNode: no node");
+  const std::size_t node = nodes_.size() - 1;
+  graph_.SetNode(node, T_world_robot);
+  if (node > 0) {
+    const Pose2D& before = graph_.nodes()[node - 1];
+    graph_.SetMeasurement(nodes_.back().sequential_edge, Between(before, graph_.nodes()[node]));
+    nodes_.back().path_m = nodes_[node - 1].path_m + Distance(before, graph_.nodes()[node]);
+  }
+  // The pending run's correction, measured from where the node was, now from where it is.
+  if (!pending_.empty() && pending_.back().to == node && !attempts_.empty() &&
+      attempts_.back().node == node)
+    pending_correction_ = attempts_.back().T_world_robot_matched * T_world_robot.Inverse();
 }
 
 void LoopCloser::Anchor(std::size_t iteration, const Pose2D& T_world_robot, bool confirmed,
@@ -251,6 +267,7 @@ std::optional<ClosureAttempt> LoopCloser::Try(const LocalisationOptions& localis
         {mounting_.RobotPose(search.candidates[i].T_world_laser), "search" + std::to_string(i)});
   const LocalisationResult result =
       Localise(view, scan, candidates, mounting_, localisation, RefinePolicy::kBestValid, 3);
+  if (!pending_.empty()) attempt.run_correction = pending_correction_;
   Judge(result, attempt);
   return attempt;
 }
@@ -345,6 +362,7 @@ void LoopCloser::Confirm(const Eigen::Matrix3d& covariance, ClosureAttempt& atte
        EdgeInformation(covariance, from.yaw_rad, options_.sigma_floor_m, options_.sigma_floor_rad),
        EdgeKind::kClosure});
   if (pending_.size() < static_cast<std::size_t>(options_.confirm_after)) {
+    attempt.pending = true;
     attempt.reason = "pending: " + std::to_string(pending_.size()) + " of " +
                      std::to_string(options_.confirm_after) + " agreeing scans";
     return;

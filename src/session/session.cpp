@@ -290,7 +290,10 @@ void Session::RestoreLocalised(IterationRecord& record, const Iteration& iterati
   const bool was_lost = drift_.lost();
   const bool searches_motion = SearchesMotion(iteration, count_, options_.motion_search);
   record.beyond_odometry = recorded.refused.has_value();
-  if (!was_lost && !searches_motion) gate_.Restore(recorded.refused);
+  if (!was_lost && !searches_motion) {
+    record.correction_bound = gate_.Bound(drift_.unconfirmed());
+    gate_.Restore(recorded.refused);
+  }
   if (was_lost) {
     record.search_window = drift_.Window(mounting_.LaserPose(record.prediction));
     record.search.emplace();
@@ -301,7 +304,8 @@ void Session::RestoreLocalised(IterationRecord& record, const Iteration& iterati
   record.localisation.emplace();
   record.verdict = recorded.verdict;
   record.validated = recorded.validated;
-  record.T_world_robot = recorded.T_world_robot;
+  // A withdrawn correction is restored as the tracker made it: the closure disputes it again.
+  record.T_world_robot = recorded.disputed ? *recorded.disputed : recorded.T_world_robot;
   if (record.validated) {
     if (!recorded.kept_test)
       throw ReplayMismatch("the record is confirmed but holds no Likelihood Test of its posture");
@@ -419,6 +423,7 @@ void Session::MaybeCloseLoop(IterationRecord& record, const Iteration& iteration
                AnchorTiming{record.timestamp_s, record.skipped, record.prediction});
   if (!record.inserted) return;
   record.closure = loop_.MaybeClose(localisation_, point_map_.options());
+  if (WithdrawDisputedTurn(record)) return;
   if (!record.closure || !record.closure->rendered) {
     const LoopClosureOptions& o = options_.loop_closure;
     if (Tracking() && loop_.FirstNewestNode(2.0 * o.tracking_path_m,
@@ -432,6 +437,23 @@ void Session::MaybeCloseLoop(IterationRecord& record, const Iteration& iteration
   RenderTracked();
   last_pose_ = *loop_.NewestNode();
   last_inserted_pose_ = last_pose_;
+}
+
+// A heading correction the closure tried at the same scan disputes is withdrawn: the node, the map
+// tracked and the session go on from the prediction (turn_dispute.hpp).
+bool Session::WithdrawDisputedTurn(IterationRecord& record) {
+  const double fraction = options_.loop_closure.dispute_turn_of_bound;
+  if (fraction <= 0.0 || !record.closure || !record.correction_bound) return false;
+  record.turn_dispute = DisputedTurn(record.prediction, record.T_world_robot, *record.closure,
+                                     fraction * record.correction_bound->rotation_rad,
+                                     options_.loop_closure.agree_rad);
+  if (!record.turn_dispute) return false;
+  loop_.MoveNewestNode(record.prediction);
+  record.T_world_robot = record.prediction;
+  last_pose_ = record.prediction;
+  last_inserted_pose_ = last_pose_;
+  RenderTracked();
+  return true;
 }
 
 bool Session::Tracking() const {

@@ -63,6 +63,9 @@ class PoseGraph {
   // that is not finite, or an information matrix that is not symmetric positive definite.
   void AddEdge(const PoseGraphEdge& edge);
   void SetNode(std::size_t index, const Pose2D& T_world_node);
+  // Replaces edge `index`'s measurement (a node moved after its edge was laid). Throws
+  // std::invalid_argument for an unknown edge.
+  void SetMeasurement(std::size_t index, const Pose2D& T_from_to);
   // Replaces edge `index`'s information (the odometry's, once learned again), and whether it is
   // active. Throws std::invalid_argument for an unknown edge or an information that is not
   // symmetric positive definite.

@@ -36,6 +36,7 @@ struct SessionCounts {
   std::size_t lost_stretches = 0, searches = 0, recoveries = 0;
   // Refinements the correction gate refused (the scan kept the odometry's prediction).
   std::size_t refused_corrections = 0;
+  std::size_t disputed_turns = 0;  // corrections a closure's dispute withdrew
   // Scans localised without odometry (none in the log, ignored, or frozen), those of them the map
   // was searched for over the motion seen lately, and those whose odometry had not moved since the
   // first scan while the ranges did.

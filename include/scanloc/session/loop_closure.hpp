@@ -98,6 +98,10 @@ struct LoopClosureOptions {
   // carried by the same odometry and erred alike. Not those that follow the odometry from their
   // node (the odometry model trusts it more than the match that would correct it).
   bool spread_over_unconfirmed = true;
+  // A heading correction the tracker made beyond this fraction of the correction gate's heading
+  // bound is withdrawn when the closure tried at the same scan disputes it (turn_dispute.hpp): the
+  // scan takes the prediction. 0 turns this off.
+  double dispute_turn_of_bound = 0.75;
   // At the end of the run, the nodes matched once more on the whole map (final_map_matching.hpp).
   FinalMatchOptions final_match;
   // Throws std::invalid_argument naming the first option out of its domain.
@@ -118,6 +122,10 @@ struct ClosureAttempt {
   double chain_sigma_rad = 0.0;
   SearchWindow window;
   bool accepted = false;         // validated, pinned, and kept by the graph
+  bool pending = false;          // validated and pinned, waiting for agreeing scans
+  // The correction the closures pending before this one agreed on (the old nodes' frame seen from
+  // the session's), when some were.
+  std::optional<Pose2D> run_correction;
   std::string reason;            // why not, or "accepted"
   Pose2D T_world_robot_before;   // the session's posture of the scan
   Pose2D T_world_robot_matched;  // against the old nodes (when something was refined)
@@ -189,6 +197,8 @@ class LoopCloser {
   double path_m() const { return nodes_.empty() ? 0.0 : nodes_.back().path_m; }
   // The newest node's posture (after a solve it moves).
   std::optional<Pose2D> NewestNode() const;
+  // Moves the newest node (a withdrawn correction), its edge from the node before with it.
+  void MoveNewestNode(const Pose2D& T_world_robot);
   // Each anchored record's posture following its node, by record index (none before the first
   // node). A run of skipped scans between two localised ones (anchored with timings) takes a
   // share of the correction the second made to its own prediction: the odometry that carried the

@@ -35,6 +35,8 @@ struct RecordedIteration {
   double signature_expect_value_m = 0.0;
   // The refinement the correction gate refused (correction_gate.hpp), when it refused one.
   std::optional<Pose2D> refused;
+  // The tracker's posture a closure's dispute withdrew (turn_dispute.hpp), when one did.
+  std::optional<Pose2D> disputed;
   bool searched = false, lost = false, recovered = false;
   bool inserted = false;
   std::size_t carved = 0, map_points = 0;

@@ -14,6 +14,7 @@
 #include "scanloc/session/loop_closure.hpp"
 #include "scanloc/session/map_signature.hpp"
 #include "scanloc/session/replay.hpp"
+#include "scanloc/session/turn_dispute.hpp"
 #include "scanloc/session/wide_search.hpp"
 
 namespace scanloc {
@@ -104,6 +105,9 @@ struct IterationRecord {
   std::size_t map_points = 0;  // after this iteration
   // The loop closure tried after this scan extended the map, when one was due.
   std::optional<ClosureAttempt> closure;
+  // The tracker's heading correction that closure disputed: withdrawn, the scan took the
+  // prediction (turn_dispute.hpp).
+  std::optional<TurnDispute> turn_dispute;
   double insert_s = 0.0, total_s = 0.0;
 
   // The refinement kept, when the scan was localised.

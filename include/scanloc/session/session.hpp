@@ -205,6 +205,7 @@ class Session : public ScanProcessor {
                       const std::optional<Eigen::Matrix3d>& covariance);
   // With loop_closure.tracking_path_m: the session tracks against the newest nodes only.
   bool Tracking() const;
+  bool WithdrawDisputedTurn(IterationRecord& record);
   void RenderTracked();
   void MatchOnFinalMap();
 
