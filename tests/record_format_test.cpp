@@ -124,6 +124,7 @@ TEST(RecordFormat, TheLineWrittenIsWhatDumpWritesForItsValueWithEveryPartPresent
   record.lost = record.recovered = record.beyond_odometry = true;
   record.correction_bound = CorrectionBound{0.25, 0.125};
   record.turn_dispute = TurnDispute{{1.0, 2.0, 0.5}, 0.1, 0.02, -0.08};
+  record.outranked_refinement = 0;
   record.state = "tentative";
   record.hypotheses.push_back({});
   record.hypotheses.back().T_world_robot = {1.0, 2.0, 0.5};
@@ -139,11 +140,13 @@ TEST(RecordFormat, TheLineWrittenIsWhatDumpWritesForItsValueWithEveryPartPresent
   WriteRecord(record, line);
   const nlohmann::json value = nlohmann::json::parse(line);
   EXPECT_EQ(line, value.dump());
-  for (const char* key : {"lost", "recovered", "beyond_odometry", "correction_bound_m_rad", "state",
-                          "posed", "hypotheses", "discarded", "closure", "search", "candidates",
-                          "chosen", "refinement", "refined_candidates", "turn_disputed_by_closure"})
+  for (const char* key :
+       {"lost", "recovered", "beyond_odometry", "correction_bound_m_rad", "state", "posed",
+        "hypotheses", "discarded", "closure", "search", "candidates", "chosen", "refinement",
+        "refined_candidates", "turn_disputed_by_closure", "outranked_refinement"})
     EXPECT_TRUE(value.contains(key)) << key;
   EXPECT_EQ(value["turn_disputed_by_closure"]["T_world_robot_tracked"]["yaw_rad"], 0.5);
+  EXPECT_EQ(value["outranked_refinement"], 0);
   EXPECT_TRUE(value["closure"].contains("T_old_robot"));
   EXPECT_EQ(value["search"]["found"], 2);
 }

@@ -161,6 +161,9 @@ void VisitSession(C& c, V& v) {
   v("session.relative_low_overlap_takes_prediction", s.relative_low_overlap_takes_prediction,
     "an unconfirmed scan whose refinement matches less than the correction gate's overlap "
     "fraction of the recent confirmed scans' median match ratio keeps the prediction");
+  v("session.keep_tighter_refinement", s.keep_tighter_refinement,
+    "among the valid refinements, keep one at a lower truncated mean distance than the rules' "
+    "best when the best matched fewer pairs than the correction gate's overlap fraction of its");
   v("session.motion_prior", s.motion_prior.enabled,
     "the odometry's prediction is a prior on the refinement's position (not its heading) ...");
   v("session.motion_prior_floor_m", s.motion_prior.floor_m, Bounds{1e-6, 100},

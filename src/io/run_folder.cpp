@@ -185,6 +185,9 @@ void WriteLocalisation(JsonWriter& out, const IterationRecord& r) {
   WriteJson(out, *kept->refinement);
   out.Key(keys::kRefinedCandidates);
   WriteRefinedCandidates(out, *localisation);
+  // The refinement the rules ranked first, where the session kept a tighter one
+  // (tighter_refinement.hpp): its index in the refined candidates.
+  if (r.outranked_refinement >= 0) out.Member(keys::kOutrankedRefinement, r.outranked_refinement);
   const Pose2D correction = Between(r.prediction, r.T_world_robot);
   out.Member(
       keys::kCorrectionFromPredictionMmMmMrad,

@@ -124,6 +124,8 @@ RecordedIteration RecordedFromJson(const json& record) {
       r.refused = PoseFrom(record.at(keys::kBeyondOdometry));
     if (record.contains(keys::kTurnDisputed))
       r.disputed = PoseFrom(record.at(keys::kTurnDisputed).at(keys::kTracked));
+    if (record.contains(keys::kOutrankedRefinement))
+      r.outranked_refinement = record.at(keys::kOutrankedRefinement).get<int>();
     r.lost = FlagOr(record, keys::kLost, false);
     r.recovered = FlagOr(record, keys::kRecovered, false);
     r.inserted = record.at(keys::kInserted).get<bool>();

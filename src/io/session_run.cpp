@@ -127,6 +127,7 @@ void SessionCounts::Add(const IterationRecord& record) {
   recoveries += record.recovered;
   refused_corrections += record.beyond_odometry;
   disputed_turns += record.turn_dispute.has_value();
+  tighter_refinements += record.outranked_refinement >= 0;
   lost_stretches += record.lost && !was_lost;
   was_lost = record.lost;
   localisation = localisation || !record.state.empty();
@@ -280,6 +281,7 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
       {"recoveries", c.recoveries},
       {"refused_corrections", c.refused_corrections},
       {"turns_disputed_by_closures", c.disputed_turns},
+      {"tighter_refinements_kept", c.tighter_refinements},
       {"lost_at_end", c.was_lost},
       {"map_points", run.session ? run.session->point_map().live_size() : 0},
       {"wall_time_s", wall_s},

@@ -111,6 +111,7 @@ std::string SummaryTable(const json& summary, const std::vector<IterationRow>& r
       {"recoveries", "recoveries"},
       {"refused_corrections", "corrections refused"},
       {"turns_disputed_by_closures", "turns disputed by closures"},
+      {"tighter_refinements_kept", "tighter refinements kept over the rules' best"},
       {"localised_without_odometry", "scans localised without odometry"},
       {"motion_searches", "searches over the motion seen lately"},
       {"odometry_frozen_scans", "scans whose odometry had not moved while the ranges did"},

@@ -7,6 +7,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "scanloc/session/tighter_refinement.hpp"
+
 namespace scanloc {
 namespace {
 
@@ -254,6 +256,10 @@ void Session::LocaliseInto(IterationRecord& record, const Iteration& iteration) 
     record.localisation->evaluate_s += first.evaluate_s;
     record.localisation->refine_s += first.refine_s;
   }
+  if (options_.keep_tighter_refinement)
+    record.outranked_refinement =
+        KeepTighterRefinement(*record.localisation, localisation_.scoring.test.match_threshold_m,
+                              options_.correction_gate.overlap_fraction);
   const RankedCandidate& kept = *record.Kept();
   record.verdict = kept.verdict;
   record.validated = record.localisation->validated();
@@ -304,6 +310,7 @@ void Session::RestoreLocalised(IterationRecord& record, const Iteration& iterati
   record.localisation.emplace();
   record.verdict = recorded.verdict;
   record.validated = recorded.validated;
+  record.outranked_refinement = recorded.outranked_refinement;
   // A withdrawn correction is restored as the tracker made it: the closure disputes it again.
   record.T_world_robot = recorded.disputed ? *recorded.disputed : recorded.T_world_robot;
   if (record.validated) {

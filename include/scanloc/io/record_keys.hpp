@@ -96,6 +96,7 @@ inline constexpr const char* kSignatureExpectValueM = "signature_expect_value_m"
 inline constexpr const char* kCorrectionBound = "correction_bound_m_rad";
 inline constexpr const char* kBeyondOdometry = "beyond_odometry";
 inline constexpr const char* kTurnDisputed = "turn_disputed_by_closure";
+inline constexpr const char* kOutrankedRefinement = "outranked_refinement";
 inline constexpr const char* kTracked = "T_world_robot_tracked";
 inline constexpr const char* kCorrectionRad = "correction_rad";
 inline constexpr const char* kClosureFromPredictionRad = "closure_from_prediction_rad";

@@ -37,6 +37,8 @@ struct SessionCounts {
   // Refinements the correction gate refused (the scan kept the odometry's prediction).
   std::size_t refused_corrections = 0;
   std::size_t disputed_turns = 0;  // corrections a closure's dispute withdrew
+  // Scans that kept a tighter refinement than the rules' best (tighter_refinement.hpp).
+  std::size_t tighter_refinements = 0;
   // Scans localised without odometry (none in the log, ignored, or frozen), those of them the map
   // was searched for over the motion seen lately, and those whose odometry had not moved since the
   // first scan while the ranges did.

@@ -37,6 +37,9 @@ struct RecordedIteration {
   std::optional<Pose2D> refused;
   // The tracker's posture a closure's dispute withdrew (turn_dispute.hpp), when one did.
   std::optional<Pose2D> disputed;
+  // The refinement the rules ranked first where the session kept a tighter one
+  // (tighter_refinement.hpp): its index among the refinements, or -1.
+  int outranked_refinement = -1;
   bool searched = false, lost = false, recovered = false;
   bool inserted = false;
   std::size_t carved = 0, map_points = 0;

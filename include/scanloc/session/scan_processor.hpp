@@ -71,6 +71,9 @@ struct IterationRecord {
   // went beyond it (then it was neither confirmed nor kept: the scan took the prediction).
   std::optional<CorrectionBound> correction_bound;
   bool beyond_odometry = false;
+  // The index of the refinement the rules ranked first, when the session kept one that matched
+  // more pairs at a lower truncated mean distance instead (tighter_refinement.hpp); -1 otherwise.
+  int outranked_refinement = -1;
   // The wide search, when the session was lost before this scan or the scan had no odometry
   // (motion_search: the window of the motion seen lately): its window and what it found.
   std::optional<SearchWindow> search_window;

@@ -94,6 +94,11 @@ struct SessionOptions {
   // and up to 0.18 rad off where the prediction was within 1 cm (fhw noisy, scans 59–62). Measured
   // on all eight public logs (docs/BENCHMARKS.md, "Unconfirmed scans on less overlap than usual").
   bool relative_low_overlap_takes_prediction = true;
+  // Among the valid refinements, one at a lower truncated mean distance is kept instead of the
+  // rules' best when the best matched fewer pairs than correction_gate.overlap_fraction of its
+  // (tighter_refinement.hpp; docs/BENCHMARKS.md, "A refinement that matched more, at a lower
+  // truncated mean").
+  bool keep_tighter_refinement = true;
   // The laser signature learned from the confirmed scans; with learned_max_expect_value, rule 2's
   // E_max is its bound (validation.max_expect_value_m the prior), otherwise it is only recorded.
   // On by default: the sparse Radish logs' scans lie 0.10–0.16 m (median EV) from a map laid by
