@@ -10,18 +10,17 @@ miss issue 15's target (the same targets as robustness-summary.py), before -> af
 misses or worst changed is marked. Runs that failed or hold no scores count as misses; a folder
 that is not a harness run, or two runs over different perturbations, is an error.
 """
-import importlib.util
 import os
+import runpy
 import statistics
 import sys
+import types
 
 
 def summary_module():
+    """robustness-summary.py's loader, targets and run names (its main() does not run)."""
     path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "robustness-summary.py")
-    spec = importlib.util.spec_from_file_location("robustness_summary", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return types.SimpleNamespace(**runpy.run_path(path))
 
 
 def perturbations(out):
