@@ -35,23 +35,13 @@ def perturbations(out):
     return labels
 
 
-def misses(summary, name, scores):
-    """How many of one run name's runs miss issue 15's target (None scores miss)."""
-    if name in summary.BENCHMARK:
-        return sum(s is None or s["max"] > summary.LOST_M for s, _ in scores)
-    if name.endswith("-noisy"):
-        return sum(l is None or l["max"] >= summary.LOCAL_LIMIT_M for _, l in scores)
-    return sum(s is None or not (s["mean"] < summary.EXACT_MEAN_M and s["max"] < summary.EXACT_MAX_M)
-               for s, _ in scores)
-
-
 def cell(summary, out, name, count):
     """(text, misses, worst) of one run name in one harness run."""
     scores = [(summary.load(os.path.join(out, f"p{i}", f"{name}.evaluation.json")),
                summary.load(os.path.join(out, f"p{i}", f"{name}.local.evaluation.json")))
               for i in range(count)]
     known = [s for s, _ in scores if s]
-    missed = misses(summary, name, scores)
+    missed = summary.misses(name, scores)
     if not known:
         return "no scores", missed, None
     worst = max(s["max"] for s in known)
