@@ -117,9 +117,10 @@ void PrintOutcome(const SessionRun& run, const nlohmann::json& summary, const Ru
   const SessionCounts& c = run.counts;
   std::cout << "run: " << c.iterations << " scans (" << c.localised << " localised, " << c.validated
             << " validated, " << c.flagged << " flagged, " << c.refused_corrections
-            << " corrections refused, " << c.disputed_turns << " turns disputed by closures, "
-            << c.tighter_refinements << " tighter refinements kept), map " << summary["map_points"]
-            << " points, " << c.wall_s << " s (" << summary["times_real_time"].get<double>()
+            << " corrections refused, " << c.slide_refusals << " refused as a slide, "
+            << c.disputed_turns << " turns disputed by closures, " << c.tighter_refinements
+            << " tighter refinements kept), map " << summary["map_points"] << " points, "
+            << c.wall_s << " s (" << summary["times_real_time"].get<double>()
             << "× real time), peak " << summary["peak_resident_mb"].get<double>() << " MB"
             << (c.interrupted ? ", interrupted" : "") << "\n";
   if (c.searches > 0 || c.lost_stretches > 0)

@@ -121,8 +121,9 @@ TEST(RecordFormat, TheLineWrittenIsWhatDumpWritesForItsValueWithEveryPartPresent
   IterationRecord record;
   for (int i = 0; i < 4 && source.Next(iteration); ++i) record = session.Process(iteration);
   ASSERT_NE(record.Kept(), nullptr);
-  record.lost = record.recovered = record.beyond_odometry = true;
+  record.lost = record.recovered = record.beyond_odometry = record.slide_refused = true;
   record.correction_bound = CorrectionBound{0.25, 0.125};
+  record.slide_check = SlideCheck{0.5, 0.75, 0.625};
   record.turn_dispute = TurnDispute{{1.0, 2.0, 0.5}, 0.1, 0.02, -0.08};
   record.outranked_refinement = 0;
   record.state = "tentative";
@@ -143,7 +144,8 @@ TEST(RecordFormat, TheLineWrittenIsWhatDumpWritesForItsValueWithEveryPartPresent
   for (const char* key :
        {"lost", "recovered", "beyond_odometry", "correction_bound_m_rad", "state", "posed",
         "hypotheses", "discarded", "closure", "search", "candidates", "chosen", "refinement",
-        "refined_candidates", "turn_disputed_by_closure", "outranked_refinement"})
+        "refined_candidates", "turn_disputed_by_closure", "outranked_refinement", "slide_refused",
+        "correction_sum_before_after_bound_m"})
     EXPECT_TRUE(value.contains(key)) << key;
   EXPECT_EQ(value["turn_disputed_by_closure"]["T_world_robot_tracked"]["yaw_rad"], 0.5);
   EXPECT_EQ(value["outranked_refinement"], 0);

@@ -96,6 +96,21 @@ TEST_F(SessionOnPublicLog, AcesUnderAPerturbedToleranceKeepsItsHeadingThroughThe
   EXPECT_LT(e.rotation_deg.max, 10.0);
 }
 
+// ACES as a short-range laser sees it (readings beyond 5.6 m taken as no return, as
+// scripts/variant-sessions.sh's short-range variant does): along the corridor at t = 1070–1095 s
+// the scans see no end, and the matcher slid backwards a few centimetres at every scan, each step
+// within the correction gate's bound, 4.6 m in all. The slide check (correction_drift.hpp) holds
+// the scans at the prediction once the corrections summed over 5 m of path go beyond 8 times
+// their learned median. Measured 2026-12-07 on the whole log (1,279 relations): 0.119 m mean, the
+// worst relation within 15 s 0.43 m; with the check off (session.correction_drift_window_m=0)
+// 0.319 m and 0.65 m.
+TEST_F(SessionOnPublicLog, AcesSeenUpTo5Point6MetresDoesNotSlideAlongItsLongCorridor) {
+  SKIP_WITHOUT_LOGS();
+  const RelationsEvaluation e = RunPrefix("aces", 100000, {"log.no_return_m=5.6"});
+  EXPECT_GE(e.matched, 1200u);
+  EXPECT_LT(e.translation_m.mean, 0.2);
+}
+
 // Intel's first 3,000 scans with every pose field zeroed: the odometry never moves while the
 // scans do. The session sets it aside once the ranges moved (after the 144 scans the robot stands
 // still), localises every scan without it and warns. Measured 2026-12-06: 2,835 scans localised

@@ -198,6 +198,16 @@ void VisitSession(C& c, V& v) {
     "correction gate: the confirmed scans it remembers");
   v("session.correction_gate_min_samples", s.correction_gate.min_samples, Bounds{1, 100000},
     "correction gate: confirmed scans before it refuses anything");
+  v("session.correction_drift_window_m", s.correction_drift.window_m, Bounds{0, 1e3},
+    "confirmed corrections are summed over this much path, m; 0: no slide check");
+  v("session.correction_drift_factor", s.correction_drift.factor, Bounds{1e-6, 1e3},
+    "a confirmed correction taking that sum beyond this many times the median sum the recent "
+    "confirmed scans left (and farther; never below the gate's bound, ×√(1 + path held / window) "
+    "while held) is refused as a slide: the scan takes the prediction");
+  v("session.correction_drift_samples", s.correction_drift.samples, Bounds{1, 1e6},
+    "slide check: sums remembered (the most recent)");
+  v("session.correction_drift_min_samples", s.correction_drift.min_samples, Bounds{1, 1e6},
+    "slide check: sums learned before it closes");
   v("session.free_space_margin_m", s.extension.free_space_margin_m, Bounds{0, 100},
     "carving: a point more than margin + margin_per_m·r in front of a return is seen through, m; "
     "0: no carving");

@@ -163,11 +163,22 @@ void WriteLocalisation(JsonWriter& out, const IterationRecord& r) {
     if (r.correction_bound)
       out.Member(keys::kCorrectionBound, std::vector<double>{r.correction_bound->translation_m,
                                                              r.correction_bound->rotation_rad});
+    // The slide check (correction_drift.hpp): the summed corrections before and with this one,
+    // and the bound in force.
+    if (r.slide_check)
+      out.Member(keys::kCorrectionSum,
+                 std::vector<double>{r.slide_check->before_m, r.slide_check->after_m,
+                                     r.slide_check->bound_m});
   }
   if (!kept) return;
   // The posture the correction gate refused: the kept refinement, the scan took the prediction.
   if (r.beyond_odometry) {
     out.Key(keys::kBeyondOdometry);
+    WriteJson(out, kept->T_world_robot);
+  }
+  // The posture refused as adding up to a slide (correction_drift.hpp).
+  if (r.slide_refused) {
+    out.Key(keys::kSlideRefused);
     WriteJson(out, kept->T_world_robot);
   }
   // The posture a closure's dispute withdrew (turn_dispute.hpp): the scan took the prediction.

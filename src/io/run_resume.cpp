@@ -122,6 +122,8 @@ RecordedIteration RecordedFromJson(const json& record) {
     if (r.localised) r.signature_expect_value_m = Real(record, keys::kSignatureExpectValueM);
     if (record.contains(keys::kBeyondOdometry))
       r.refused = PoseFrom(record.at(keys::kBeyondOdometry));
+    if (record.contains(keys::kSlideRefused))
+      r.slide_refused = PoseFrom(record.at(keys::kSlideRefused));
     if (record.contains(keys::kTurnDisputed))
       r.disputed = PoseFrom(record.at(keys::kTurnDisputed).at(keys::kTracked));
     if (record.contains(keys::kOutrankedRefinement))

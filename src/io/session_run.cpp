@@ -126,6 +126,7 @@ void SessionCounts::Add(const IterationRecord& record) {
   odometry_frozen += record.odometry_frozen;
   recoveries += record.recovered;
   refused_corrections += record.beyond_odometry;
+  slide_refusals += record.slide_refused;
   disputed_turns += record.turn_dispute.has_value();
   tighter_refinements += record.outranked_refinement >= 0;
   lost_stretches += record.lost && !was_lost;
@@ -280,6 +281,7 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
       {"odometry_from_scans", c.odometry_from_scans},
       {"recoveries", c.recoveries},
       {"refused_corrections", c.refused_corrections},
+      {"slide_refusals", c.slide_refusals},
       {"turns_disputed_by_closures", c.disputed_turns},
       {"tighter_refinements_kept", c.tighter_refinements},
       {"lost_at_end", c.was_lost},

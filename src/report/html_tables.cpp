@@ -110,6 +110,7 @@ std::string SummaryTable(const json& summary, const std::vector<IterationRow>& r
       {"wide_searches", "wide searches"},
       {"recoveries", "recoveries"},
       {"refused_corrections", "corrections refused"},
+      {"slide_refusals", "corrections refused as a slide"},
       {"turns_disputed_by_closures", "turns disputed by closures"},
       {"tighter_refinements_kept", "tighter refinements kept over the rules' best"},
       {"localised_without_odometry", "scans localised without odometry"},

@@ -58,6 +58,7 @@ void SessionOptions::Validate() const {
   signature.Validate();
   motion_prior.Validate();
   correction_gate.Validate();
+  correction_drift.Validate();
   recovery.Validate();
   motion_search.Validate();
   loop_closure.Validate();
@@ -76,6 +77,7 @@ Session::Session(const SessionConfig& config, LaserMounting mounting, LineMap li
       signature_(options_.signature),
       drift_(options_.recovery),
       gate_(options_.correction_gate),
+      correction_drift_(options_.correction_drift),
       loop_(options_.loop_closure, mounting_),
       motion_(options_.motion_search),
       frozen_(options_.motion_search.frozen_odometry_range_change_m) {
@@ -265,25 +267,43 @@ void Session::LocaliseInto(IterationRecord& record, const Iteration& iteration) 
   record.validated = record.localisation->validated();
   // The wide search's window, not the gate, bounds a lost session's correction (and a scan
   // without odometry has no odometry to be beyond).
-  if (!was_lost && !searches_motion) {
-    record.correction_bound = gate_.Bound(drift_.unconfirmed());
-    RefinementSupport support{kept.test.MatchRatio(), std::nullopt};
-    if (kept.refinement && kept.refinement->has_covariance)
-      support.position_covariance = kept.refinement->covariance.topLeftCorner<2, 2>();
-    record.beyond_odometry =
-        gate_.Refuses(record.prediction, kept.T_world_robot, support, drift_.unconfirmed());
-    if (record.beyond_odometry) record.validated = false;
-  }
+  if (!was_lost && !searches_motion) JudgeCorrection(record, kept);
   // Without odometry the prediction is only the last posture: nothing the scan could not
   // disprove.
   record.T_world_robot =
       !searches_motion && TakesPrediction(record, kept) ? record.prediction : kept.T_world_robot;
+  if (!was_lost && !searches_motion) KeepDrift(record);
   if (record.validated) {
     signature_.Add(kept.test);
-    if (!searches_motion)
+    if (!searches_motion && !record.slide_refused)
       gate_.Add(Between(record.prediction, record.T_world_robot), kept.test.MatchRatio());
   }
   AfterLocalised(record, iteration, was_lost);
+}
+
+// The correction gate and the slide check judge the kept refinement's correction of the
+// prediction. A slide is a correction the scan does not demand: one the check refuses is refused
+// only when the prediction as given passed the rules too, at a cost (3.11) within
+// prediction_disproved_cost_ratio of the refinement's. The scan is then confirmed at the
+// prediction, and the map goes on growing along the odometry; where the map disproves the
+// prediction, the correction stands (an odometry gone wrong).
+void Session::JudgeCorrection(IterationRecord& record, const RankedCandidate& kept) {
+  record.correction_bound = gate_.Bound(drift_.unconfirmed());
+  RefinementSupport support{kept.test.MatchRatio(), std::nullopt};
+  if (kept.refinement && kept.refinement->has_covariance)
+    support.position_covariance = kept.refinement->covariance.topLeftCorner<2, 2>();
+  record.beyond_odometry =
+      gate_.Refuses(record.prediction, kept.T_world_robot, support, drift_.unconfirmed());
+  if (record.beyond_odometry) record.validated = false;
+  correction_drift_.Predicted(record.prediction);
+  if (record.validated)
+    record.slide_check = correction_drift_.Check(
+        kept.T_world_robot.Translation() - record.prediction.Translation(),
+        record.correction_bound ? record.correction_bound->translation_m : 0.0);
+  record.slide_refused =
+      record.slide_check && record.slide_check->Refused() &&
+      record.localisation->evaluated.front().verdict == Verdict::kValid &&
+      !PredictionDisproved(*record.localisation, options_.prediction_disproved_cost_ratio);
 }
 
 // The localisation as recorded: its posture and verdict, the kept refinement's test taught to the
@@ -296,9 +316,11 @@ void Session::RestoreLocalised(IterationRecord& record, const Iteration& iterati
   const bool was_lost = drift_.lost();
   const bool searches_motion = SearchesMotion(iteration, count_, options_.motion_search);
   record.beyond_odometry = recorded.refused.has_value();
+  record.slide_refused = recorded.slide_refused.has_value();
   if (!was_lost && !searches_motion) {
     record.correction_bound = gate_.Bound(drift_.unconfirmed());
     gate_.Restore(recorded.refused);
+    correction_drift_.Predicted(record.prediction);
   }
   if (was_lost) {
     record.search_window = drift_.Window(mounting_.LaserPose(record.prediction));
@@ -313,20 +335,32 @@ void Session::RestoreLocalised(IterationRecord& record, const Iteration& iterati
   record.outranked_refinement = recorded.outranked_refinement;
   // A withdrawn correction is restored as the tracker made it: the closure disputes it again.
   record.T_world_robot = recorded.disputed ? *recorded.disputed : recorded.T_world_robot;
+  if (!was_lost && !searches_motion) KeepDrift(record);
   if (record.validated) {
     if (!recorded.kept_test)
       throw ReplayMismatch("the record is confirmed but holds no Likelihood Test of its posture");
     signature_.Add(*recorded.kept_test);
-    if (!searches_motion)
+    if (!searches_motion && !record.slide_refused)
       gate_.Add(Between(record.prediction, record.T_world_robot), recorded.kept_test->MatchRatio());
   }
   AfterLocalised(record, iteration, was_lost);
+}
+
+// The posture the tracker kept, and its correction of the prediction when it was confirmed.
+void Session::KeepDrift(const IterationRecord& record) {
+  correction_drift_.Kept(record.T_world_robot,
+                         record.validated
+                             ? std::optional<Eigen::Vector2d>(record.T_world_robot.Translation() -
+                                                              record.prediction.Translation())
+                             : std::nullopt,
+                         record.slide_refused);
 }
 
 // An unconfirmed scan keeps the prediction when its refinement had too little of the scan on the
 // map to say anything (rule 1, or no valid pair), or, with unconfirmed_takes_prediction, unless
 // the data disproves the prediction.
 bool Session::TakesPrediction(const IterationRecord& record, const RankedCandidate& kept) const {
+  if (record.slide_refused) return true;
   if (record.validated) return false;
   if (record.beyond_odometry) return true;
   if (options_.low_overlap_takes_prediction &&
@@ -371,6 +405,7 @@ void Session::AfterLocalised(IterationRecord& record, const Iteration& iteration
   drift_.Localised(record.validated);
   record.lost = drift_.lost();
   record.recovered = was_lost && record.validated;
+  if (record.recovered) correction_drift_.Restart(record.T_world_robot);
   if (iteration.odometry) last_localised_odometry_ = *iteration.odometry;
   if (record.validated && SearchesMotion(iteration, count_, options_.motion_search))
     motion_.Add(Between(last_pose_, record.T_world_robot));

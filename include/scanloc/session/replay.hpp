@@ -35,6 +35,8 @@ struct RecordedIteration {
   double signature_expect_value_m = 0.0;
   // The refinement the correction gate refused (correction_gate.hpp), when it refused one.
   std::optional<Pose2D> refused;
+  // The refinement refused as adding up to a slide (correction_drift.hpp), when one was.
+  std::optional<Pose2D> slide_refused;
   // The tracker's posture a closure's dispute withdrew (turn_dispute.hpp), when one did.
   std::optional<Pose2D> disputed;
   // The refinement the rules ranked first where the session kept a tighter one

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "scanloc/maps/point_map.hpp"
+#include "scanloc/session/correction_drift.hpp"
 #include "scanloc/session/correction_gate.hpp"
 #include "scanloc/session/final_map_matching.hpp"
 #include "scanloc/session/iteration.hpp"
@@ -71,6 +72,12 @@ struct IterationRecord {
   // went beyond it (then it was neither confirmed nor kept: the scan took the prediction).
   std::optional<CorrectionBound> correction_bound;
   bool beyond_odometry = false;
+  // The kept refinement was confirmed, but its correction would have added up, with the recent
+  // ones, to a slide (correction_drift.hpp), and the prediction as given passed the rules too:
+  // the correction was refused, and the scan was confirmed at the prediction.
+  bool slide_refused = false;
+  // The slide check of the confirmed correction, once the check has learned its bound.
+  std::optional<SlideCheck> slide_check;
   // The index of the refinement the rules ranked first, when the session kept one that matched
   // more pairs at a lower truncated mean distance instead (tighter_refinement.hpp); -1 otherwise.
   int outranked_refinement = -1;

@@ -13,6 +13,7 @@
 #include "scanloc/likelihood/laser_signature.hpp"
 #include "scanloc/maps/line_map.hpp"
 #include "scanloc/maps/point_map.hpp"
+#include "scanloc/session/correction_drift.hpp"
 #include "scanloc/session/correction_gate.hpp"
 #include "scanloc/session/iteration.hpp"
 #include "scanloc/session/localisation.hpp"
@@ -111,6 +112,9 @@ struct SessionOptions {
   // Refinements that move the posture much further from the prediction than the recent confirmed
   // scans' refinements did are refused (correction_gate.hpp).
   CorrectionGateOptions correction_gate;
+  // Confirmed corrections that would add up to a slide over the last stretch of path are refused
+  // (correction_drift.hpp).
+  CorrectionDriftOptions correction_drift;
   // When the session counts itself lost, and the wide search it then adds.
   RecoveryOptions recovery;
   // The log's odometry is not used: every scan is localised as in a log without odometry
@@ -196,6 +200,8 @@ class Session : public ScanProcessor {
   void LocaliseInto(IterationRecord& record, const Iteration& iteration);
   void RestoreLocalised(IterationRecord& record, const Iteration& iteration,
                         const RecordedIteration& recorded);
+  void JudgeCorrection(IterationRecord& record, const RankedCandidate& kept);
+  void KeepDrift(const IterationRecord& record);
   bool TakesPrediction(const IterationRecord& record, const RankedCandidate& kept) const;
   // Rule 2's E_max in force for the next localisation and the signature's bound, into `record`.
   LocalisationOptions BoundedOptions(IterationRecord& record) const;
@@ -226,6 +232,7 @@ class Session : public ScanProcessor {
   std::optional<FinalMatchSummary> final_match_;
   DriftTracker drift_;
   CorrectionGate gate_;
+  CorrectionDrift correction_drift_;
   LoopCloser loop_;
   std::size_t count_ = 0;
   Pose2D last_pose_;  // T_world_robot of the previous iteration
