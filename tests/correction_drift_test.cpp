@@ -112,6 +112,18 @@ TEST(CorrectionDrift, TheBoundWidensWithThePathDrivenWhileHeldLikeARandomWalk) {
   EXPECT_NEAR(*drift.Bound(), 0.272, 1e-9);
 }
 
+TEST(CorrectionDrift, AClosureThatMovesThePostureIsNoPathDriven) {
+  // The last posture kept is x = 29.7 m; a closure's solve moves the session 100 m on, and the
+  // next scan is predicted one 0.3 m step from there: the window loses its oldest correction
+  // only (16 · 0.002 = 0.032 m), not all of them as a 100.3 m step would.
+  CorrectionDrift drift = Learned();
+  drift.Moved(Pose2D(129.7, 0.0, 0.0));
+  drift.Predicted(Pose2D(130.0, 0.0, 0.0));
+  const std::optional<SlideCheck> check = drift.Check({0.0, 0.0});
+  ASSERT_TRUE(check.has_value());
+  EXPECT_NEAR(check->before_m, 0.032, 1e-12);
+}
+
 TEST(CorrectionDrift, AZeroWindowTurnsTheCheckOff) {
   CorrectionDriftOptions off;
   off.window_m = 0.0;

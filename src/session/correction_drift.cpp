@@ -55,6 +55,10 @@ void CorrectionDrift::Kept(const Pose2D& posture, const std::optional<Eigen::Vec
   if (sums_m_.size() > static_cast<std::size_t>(options_.samples)) sums_m_.PopOldest();
 }
 
+void CorrectionDrift::Moved(const Pose2D& posture) {
+  if (last_) last_ = posture;
+}
+
 void CorrectionDrift::Restart(const Pose2D& posture) {
   last_ = posture;
   window_.clear();

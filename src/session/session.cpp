@@ -346,7 +346,8 @@ void Session::RestoreLocalised(IterationRecord& record, const Iteration& iterati
   AfterLocalised(record, iteration, was_lost);
 }
 
-// The posture the tracker kept, and its correction of the prediction when it was confirmed.
+// The posture the tracker kept, and its correction of the prediction when it was confirmed; a
+// correction the slide check refused holds the check's window where it stands.
 void Session::KeepDrift(const IterationRecord& record) {
   correction_drift_.Kept(record.T_world_robot,
                          record.validated
@@ -356,9 +357,10 @@ void Session::KeepDrift(const IterationRecord& record) {
                          record.slide_refused);
 }
 
-// An unconfirmed scan keeps the prediction when its refinement had too little of the scan on the
-// map to say anything (rule 1, or no valid pair), or, with unconfirmed_takes_prediction, unless
-// the data disproves the prediction.
+// A scan keeps the prediction when the slide check refused its confirmed correction. An
+// unconfirmed scan keeps it when the correction gate refused its correction, when its refinement
+// had too little of the scan on the map to say anything (rule 1, or no valid pair), or, with
+// unconfirmed_takes_prediction, unless the data disproves the prediction.
 bool Session::TakesPrediction(const IterationRecord& record, const RankedCandidate& kept) const {
   if (record.slide_refused) return true;
   if (record.validated) return false;
@@ -479,6 +481,7 @@ void Session::MaybeCloseLoop(IterationRecord& record, const Iteration& iteration
   RenderTracked();
   last_pose_ = *loop_.NewestNode();
   last_inserted_pose_ = last_pose_;
+  correction_drift_.Moved(last_pose_);
 }
 
 // A heading correction the closure tried at the same scan disputes is withdrawn: the node, the map
@@ -494,6 +497,7 @@ bool Session::WithdrawDisputedTurn(IterationRecord& record) {
   record.T_world_robot = record.prediction;
   last_pose_ = record.prediction;
   last_inserted_pose_ = last_pose_;
+  correction_drift_.Moved(last_pose_);
   RenderTracked();
   return true;
 }

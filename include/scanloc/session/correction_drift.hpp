@@ -65,6 +65,9 @@ class CorrectionDrift {
   // The posture the scan kept, and its correction when it was confirmed (its sum is learned);
   // `held` when its correction was refused.
   void Kept(const Pose2D& posture, const std::optional<Eigen::Vector2d>& correction, bool held);
+  // The session goes on from `posture` instead of the one it kept (a closure's solve moved it):
+  // the next step is driven from there, the jump is no path.
+  void Moved(const Pose2D& posture);
   // A lost session found its posture again at `posture` (the wide search's, not a correction of
   // the odometry): the window starts afresh from there; the sums learned are kept.
   void Restart(const Pose2D& posture);
