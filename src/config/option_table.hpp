@@ -359,7 +359,7 @@ void VisitLoopClosure(C& c, V& v) {
     "odometry model: its position variance per metre is at least this times its heading's, m²");
   v("loop_closure.odometry_heading_test_chi2", l.odometry.heading_test_chi2, Bounds{0, 1e6},
     "odometry model: its heading noise is zero unless fitting it gains twice the log-likelihood "
-    "beyond this χ² (1 dof; 6.635: 99 %; 0: no test)");
+    "beyond this χ² (1 dof; 10.828: 99.9 %; 0: no test)");
   v("loop_closure.odometry_position_test_chi2", l.odometry.position_test_chi2, Bounds{0, 1e6},
     "... and its position noise only what its heading noise implies unless fitting more gains "
     "this (0: no test)");
