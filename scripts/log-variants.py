@@ -3,6 +3,7 @@
 
   scripts/log-variants.py sparse LOG.clf.gz REFERENCE OUT.clf OUT.relations
   scripts/log-variants.py short-range LOG.clf.gz OUT.clf [RANGE_M]
+  scripts/log-variants.py range-noise LOG.clf.gz OUT.clf [SIGMA_M [SEED]]
 
 - sparse: only the scans with a reference pose, one after every 0.8 m or 0.3 rad of the log's
   odometry (a log kept as the Radish logs are, a scan every metre or so). Every other line (ODOM,
@@ -11,6 +12,9 @@
   random pairs (seed 1).
 - short-range: every FLASER reading beyond RANGE_M (default 5.6, a Hokuyo URG-04LX) becomes
   RANGE_M, the no-return value of such a laser. The log's own relations still apply.
+- range-noise: every FLASER reading below the log's largest (its no-return value) gains Gaussian
+  noise of SIGMA_M (default 0.03, a laser four to six times noisier than the logs' SICKs; SEED, 1),
+  kept at 0.01 m or more. The log's own relations still apply.
 """
 import bisect
 import gzip
@@ -95,11 +99,33 @@ def short_range(log, out_log, range_m):
             out.write(line)
 
 
+def range_noise(log, out_log, sigma_m, seed):
+    no_return = 0.0
+    for line in lines(log):
+        f = line.split()
+        if f and f[0] == "FLASER":
+            n, _ = flaser(f)
+            no_return = max([no_return] + [float(r) for r in f[2:2 + n]])
+    rng = random.Random(seed)
+    with open(out_log, "w") as out:
+        for line in lines(log):
+            f = line.split()
+            if f and f[0] == "FLASER":
+                n, rest = flaser(f)
+                ranges = [float(r) for r in f[2:2 + n]]
+                noisy = [r if r >= no_return else max(0.01, r + rng.gauss(0.0, sigma_m)) for r in ranges]
+                line = " ".join(f[:2] + ["%.3f" % r for r in noisy] + rest) + "\n"
+            out.write(line)
+
+
 def main():
     if len(sys.argv) >= 6 and sys.argv[1] == "sparse":
         sparse(*sys.argv[2:6])
     elif len(sys.argv) in (4, 5) and sys.argv[1] == "short-range":
         short_range(sys.argv[2], sys.argv[3], float(sys.argv[4]) if len(sys.argv) == 5 else 5.6)
+    elif len(sys.argv) in (4, 5, 6) and sys.argv[1] == "range-noise":
+        range_noise(sys.argv[2], sys.argv[3], float(sys.argv[4]) if len(sys.argv) >= 5 else 0.03,
+                    int(sys.argv[5]) if len(sys.argv) == 6 else 1)
     else:
         sys.exit(__doc__.strip())
 

@@ -6,6 +6,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace scanloc {
@@ -60,6 +61,12 @@ void OdometryModel::Learn(std::vector<ChainMisses> closures, std::vector<ChainMi
 
 namespace {
 
+// Where a test's statistic is tested again without its most decisive closure: at the bound it is
+// compared with (none when the test is off).
+double TestBound(double test_chi2) {
+  return test_chi2 > 0.0 ? test_chi2 : std::numeric_limits<double>::infinity();
+}
+
 // Each closure's two misses in heading as one observation, and the stretches' (paired_misses.hpp).
 std::vector<PairedMiss<1>> PairedHeadings(const std::vector<ChainMisses>& closures) {
   std::vector<PairedMiss<1>> paired(closures.size());
@@ -86,6 +93,8 @@ std::vector<StretchMiss<1>> StretchHeadings(const std::vector<ChainMisses>& stre
     misses[i].odometry_shape(0, 0) = m.odometry_per_heading(2, 2);
     misses[i].matched_shape(0, 0) = m.matched_covariance(2, 2);
     misses[i].jitter_shape(0, 0) = 2.0;
+    misses[i].start_m = m.start_path_m;
+    misses[i].end_m = m.start_path_m + m.path_m;
   }
   return misses;
 }
@@ -121,7 +130,8 @@ HeadingFit FitHeading(const std::vector<ChainMisses>& closures,
         {m.odometry_miss(2) * m.odometry_miss(2), m.odometry_floor(2, 2),
          Eigen::Vector3d(m.odometry_per_heading(2, 2), m.matched_covariance(2, 2), 0.0)});
   const double fitted = FitVarianceComponents(observations)(0);
-  const NoiseTest test = TestOdometryNoise<1>(PairedHeadings(closures), StretchHeadings(stretches));
+  const NoiseTest test = TestOdometryNoise<1>(PairedHeadings(closures), StretchHeadings(stretches),
+                                              TestBound(test_chi2));
   const bool noisy = fitted > 0.0 && (!(test_chi2 > 0.0) || test.statistic > test_chi2);
   return {noisy ? fitted : 0.0, noisy ? test.with.jitter : test.without.jitter, test.statistic};
 }
@@ -179,7 +189,7 @@ double PositionScaleUpperBound(const std::vector<ChainMisses>& closures,
 // few closures settled on: one closure's few centimetres made it 2e-4 m²/m (edmonton).
 double PositionStatistic(const std::vector<ChainMisses>& closures,
                          const std::vector<ChainMisses>& stretches, const HeadingFit& heading,
-                         double least) {
+                         double least, double test_chi2) {
   const auto known = [&](const ChainMisses& m) -> Eigen::Matrix2d {
     return (heading.scale * m.odometry_per_heading + least * m.odometry_per_position +
             m.odometry_floor)
@@ -209,8 +219,10 @@ double PositionStatistic(const std::vector<ChainMisses>& closures,
     misses[i].odometry_shape = m.odometry_per_position.topLeftCorner<2, 2>();
     misses[i].matched_shape = m.matched_covariance.topLeftCorner<2, 2>();
     misses[i].jitter_shape = 2.0 * Eigen::Matrix2d::Identity();
+    misses[i].start_m = m.start_path_m;
+    misses[i].end_m = m.start_path_m + m.path_m;
   }
-  return TestOdometryNoise<2>(paired, misses).statistic;
+  return TestOdometryNoise<2>(paired, misses, TestBound(test_chi2)).statistic;
 }
 
 }  // namespace
@@ -236,7 +248,8 @@ void OdometryModel::Fit() {
                              PositionScaleUpperBound(misses_, stretches_, heading_));
   const double least = options_.position_per_heading_m2 * heading_;
   if (position_ > least && options_.position_test_chi2 > 0.0) {
-    position_statistic_ = PositionStatistic(misses_, stretches_, heading, least);
+    position_statistic_ =
+        PositionStatistic(misses_, stretches_, heading, least, options_.position_test_chi2);
     if (!(*position_statistic_ > options_.position_test_chi2)) position_ = least;
   }
   position_ = std::max(position_, least);

@@ -170,15 +170,74 @@ double PairedLogLikelihood(const std::vector<PairedMiss<K>>& closures,
   return LogLikelihood(closures, stretches, scales, VarianceFloor(closures, stretches));
 }
 
+namespace {
+
 template <int K>
-NoiseTest TestOdometryNoise(const std::vector<PairedMiss<K>>& closures,
-                            const std::vector<StretchMiss<K>>& stretches) {
-  if (closures.empty()) return {};
+NoiseTest FitBoth(const std::vector<PairedMiss<K>>& closures,
+                  const std::vector<StretchMiss<K>>& stretches) {
   std::vector<FreeScale> free{{&PairedScales::matched, -7.0}, {&PairedScales::jitter, -16.0}};
   const auto [without, at_without] = MaximumLogLikelihood(closures, stretches, free);
   free.push_back({&PairedScales::odometry, -16.0});
   const auto [with, at_with] = MaximumLogLikelihood(closures, stretches, free);
-  return {std::max(0.0, 2.0 * (with - without)), at_without, at_with};
+  return {std::max(0.0, 2.0 * (with - without)), at_without, at_with, std::nullopt, 0};
+}
+
+// The event whose own terms gain the most between the fit without λ_o and the fit with it: a
+// closure (when `closures_may_go`), or the place of one stretch.
+struct Event {
+  bool closure = false;
+  std::size_t index = 0;
+};
+
+template <int K>
+Event MostDecisive(const std::vector<PairedMiss<K>>& closures,
+                   const std::vector<StretchMiss<K>>& stretches, const NoiseTest& test,
+                   bool closures_may_go) {
+  const double floor = VarianceFloor(closures, stretches);
+  Event decisive;
+  double largest = -std::numeric_limits<double>::infinity();
+  const auto weigh = [&](double gain, Event event) {
+    if (gain > largest) largest = gain, decisive = event;
+  };
+  for (std::size_t i = 0; closures_may_go && i < closures.size(); ++i) {
+    const std::vector<PairedMiss<K>> one{closures[i]};
+    weigh(LogLikelihood<K>(one, {}, test.with, floor) -
+              LogLikelihood<K>(one, {}, test.without, floor),
+          {true, i});
+  }
+  for (std::size_t i = 0; i < stretches.size(); ++i) {
+    const std::vector<StretchMiss<K>> one{stretches[i]};
+    weigh(LogLikelihood<K>({}, one, test.with, floor) -
+              LogLikelihood<K>({}, one, test.without, floor),
+          {false, i});
+  }
+  return decisive;
+}
+
+}  // namespace
+
+template <int K>
+NoiseTest TestOdometryNoise(const std::vector<PairedMiss<K>>& closures,
+                            const std::vector<StretchMiss<K>>& stretches, double decisive_above) {
+  if (closures.empty()) return {};
+  const NoiseTest test = FitBoth(closures, stretches);
+  if (!(test.statistic > decisive_above)) return test;
+  const Event event = MostDecisive(closures, stretches, test, closures.size() >= 3);
+  std::vector<PairedMiss<K>> kept_closures = closures;
+  std::vector<StretchMiss<K>> kept_stretches;
+  if (event.closure) {
+    kept_closures.erase(kept_closures.begin() + static_cast<std::ptrdiff_t>(event.index));
+    kept_stretches = stretches;
+  } else {
+    const StretchMiss<K>& place = stretches[event.index];
+    for (const StretchMiss<K>& s : stretches)
+      if (!(s.start_m < place.end_m && place.start_m < s.end_m)) kept_stretches.push_back(s);
+  }
+  NoiseTest without_one = FitBoth(kept_closures, kept_stretches);
+  if (!(without_one.statistic < test.statistic)) return test;
+  if (event.closure) without_one.left_out_closure = event.index;
+  without_one.left_out_stretches = stretches.size() - kept_stretches.size();
+  return without_one;
 }
 
 template double PairedLogLikelihood<1>(const std::vector<PairedMiss<1>>&,
@@ -186,8 +245,8 @@ template double PairedLogLikelihood<1>(const std::vector<PairedMiss<1>>&,
 template double PairedLogLikelihood<2>(const std::vector<PairedMiss<2>>&,
                                        const std::vector<StretchMiss<2>>&, const PairedScales&);
 template NoiseTest TestOdometryNoise<1>(const std::vector<PairedMiss<1>>&,
-                                        const std::vector<StretchMiss<1>>&);
+                                        const std::vector<StretchMiss<1>>&, double);
 template NoiseTest TestOdometryNoise<2>(const std::vector<PairedMiss<2>>&,
-                                        const std::vector<StretchMiss<2>>&);
+                                        const std::vector<StretchMiss<2>>&, double);
 
 }  // namespace scanloc

@@ -493,6 +493,7 @@ std::optional<ChainMisses> LoopCloser::Chains(std::size_t a, std::size_t b,
                                               const std::optional<Pose2D>& closure) const {
   ChainMisses misses;
   misses.path_m = nodes_[b].path_m - nodes_[a].path_m;
+  misses.start_path_m = nodes_[a].path_m;
   CompoundedPosture matched, position, heading, floor;
   for (std::size_t k = a + 1; k <= b; ++k) {
     if (!nodes_[k - 1].odometry || !nodes_[k].odometry) return std::nullopt;
