@@ -182,6 +182,9 @@ NoiseTest FitBoth(const std::vector<PairedMiss<K>>& closures,
   return {std::max(0.0, 2.0 * (with - without)), at_without, at_with, std::nullopt, 0};
 }
 
+// A test rests on one event when, without it, less than this share of its statistic is left.
+constexpr double kDecisiveShare = 0.5;
+
 // The event whose own terms gain the most between the fit without λ_o and the fit with it: a
 // closure (when `closures_may_go`), or the place of one stretch.
 struct Event {
@@ -234,7 +237,7 @@ NoiseTest TestOdometryNoise(const std::vector<PairedMiss<K>>& closures,
       if (!(s.start_m < place.end_m && place.start_m < s.end_m)) kept_stretches.push_back(s);
   }
   NoiseTest without_one = FitBoth(kept_closures, kept_stretches);
-  if (!(without_one.statistic < test.statistic)) return test;
+  if (!(without_one.statistic < kDecisiveShare * test.statistic)) return test;
   if (event.closure) without_one.left_out_closure = event.index;
   without_one.left_out_stretches = stretches.size() - kept_stretches.size();
   return without_one;
