@@ -88,6 +88,28 @@ TEST(CorrectionGate, ASlideAlongTheLeastConstrainedAxisIsRefusedOnFullOverlap) {
   EXPECT_FALSE(gate.Refuses(prediction, Pose2D{1.5, 1.0, 0.0}, RefinementSupport{0.8, {}}, 0));
 }
 
+// A refinement still moving when its iterations ran out states a covariance taken where it
+// stopped: round here, though it slid 0.5 m (acapulco's corridor, 0.59 m in 15 iterations).
+TEST(CorrectionGate, ASlideByARefinementThatDidNotConvergeIsRefusedWhateverItsCovariance) {
+  const Eigen::Matrix2d round = Eigen::Vector2d(0.01 * 0.01, 0.01 * 0.01).asDiagonal();
+  const Pose2D prediction{1.0, 1.0, 0.0};
+  CorrectionGate gate = Learned();
+  EXPECT_TRUE(
+      gate.Refuses(prediction, Pose2D{1.5, 1.0, 0.0}, RefinementSupport{0.8, round, false}, 0));
+  gate = Learned();
+  // Converged, with a round covariance: the scan demands the correction.
+  EXPECT_FALSE(
+      gate.Refuses(prediction, Pose2D{1.5, 1.0, 0.0}, RefinementSupport{0.8, round, true}, 0));
+  gate = Learned();
+  // Beyond the bound in heading too: a turn where the odometry slipped, not a slide.
+  EXPECT_FALSE(
+      gate.Refuses(prediction, Pose2D{1.5, 1.0, 0.5}, RefinementSupport{0.8, round, false}, 0));
+  gate = Learned();
+  // Within the bound (8 · 0.02 m): nothing to judge.
+  EXPECT_FALSE(
+      gate.Refuses(prediction, Pose2D{1.1, 1.0, 0.0}, RefinementSupport{0.8, round, false}, 0));
+}
+
 TEST(CorrectionGate, ARefusedPostureTheNextScanAgreesWithIsKept) {
   CorrectionGate gate = Learned();
   const Pose2D prediction{0.0, 0.0, 0.0};

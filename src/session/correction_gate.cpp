@@ -81,8 +81,10 @@ bool CorrectionGate::Unsupported(const CorrectionBound& bound, const Pose2D& pre
   if (!bound.Exceeded(correction)) return false;
   if (LowOverlap(support.match_ratio)) return true;  // (Bound needs min_samples as LowOverlap)
   // A slide: beyond the bound in position only (a turn where the odometry slipped moves the
-  // position with the heading).
-  return support.position_covariance && !bound.ExceededInHeading(correction) &&
+  // position with the heading), along the weak axis or still under way.
+  if (bound.ExceededInHeading(correction)) return false;
+  if (!support.converged) return true;
+  return support.position_covariance &&
          WeakAxisRatio(*support.position_covariance,
                        Eigen::Vector2d(refined.x_m - prediction.x_m,
                                        refined.y_m - prediction.y_m)) >= options_.weak_axis_ratio;

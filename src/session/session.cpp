@@ -289,9 +289,10 @@ void Session::LocaliseInto(IterationRecord& record, const Iteration& iteration) 
 // prediction, the correction stands (an odometry gone wrong).
 void Session::JudgeCorrection(IterationRecord& record, const RankedCandidate& kept) {
   record.correction_bound = gate_.Bound(drift_.unconfirmed());
-  RefinementSupport support{kept.test.MatchRatio(), std::nullopt};
+  RefinementSupport support{kept.test.MatchRatio(), std::nullopt, true};
   if (kept.refinement && kept.refinement->has_covariance)
     support.position_covariance = kept.refinement->covariance.topLeftCorner<2, 2>();
+  if (kept.refinement) support.converged = kept.refinement->converged;
   record.beyond_odometry =
       gate_.Refuses(record.prediction, kept.T_world_robot, support, drift_.unconfirmed());
   if (record.beyond_odometry) record.validated = false;

@@ -11,7 +11,8 @@
 // A large correction stands when the scan supports it: on as much overlap as usual, along a
 // direction the scan constrains as well as any other (a turn where the odometry slipped); it is
 // refused on little overlap (a fit to the few walls in view) or, in position, along the direction
-// the scan constrains least (a slide along a corridor's axis).
+// the scan constrains least (a slide along a corridor's axis), or by a refinement still moving when
+// its iterations ran out (a slide the covariance, taken where it stopped, does not show).
 
 #include <cstddef>
 #include <optional>
@@ -40,7 +41,7 @@ struct CorrectionGateOptions {
   double overlap_fraction = 0.75;
   // ... or when it exceeds the bound in position only (not in heading), along a direction whose
   // standard deviation (the refinement's covariance) is at least this many times the
-  // best-constrained direction's.
+  // best-constrained direction's, or by a refinement that did not converge.
   double weak_axis_ratio = 3.0;
   // Throws std::invalid_argument naming the first option out of its domain.
   void Validate() const;
@@ -55,11 +56,15 @@ struct CorrectionBound {
   bool ExceededInHeading(const Pose2D& correction) const;
 };
 
-// What a refinement's scan says for it: its match ratio, and the covariance of its position (world
-// frame, m²) when the refinement has one.
+// What a refinement's scan says for it: its match ratio, the covariance of its position (world
+// frame, m²) when the refinement has one, and whether it converged (false: it stopped at its
+// iteration cap still moving; acapulco with a laser 1 cm noisier slid 0.59 m along a corridor
+// over 15 outer iterations, its covariance stating 1 cm, and orebro's scan 107, given perfect
+// odometry, 0.33 m).
 struct RefinementSupport {
   double match_ratio = 0.0;
   std::optional<Eigen::Matrix2d> position_covariance;
+  bool converged = true;
 };
 
 // The standard deviation of `covariance` along `direction` over its smallest one (1 when the
