@@ -45,26 +45,8 @@ for ((i = 0; i < seeds; ++i)); do
   done
 done
 
-# One session and its scores: run_one INDEX NAME LOG RELATIONS.
-run_one() {
-  local i=$1 name=$2 log=$3 relations=$4 dir="$out/p$1" args
-  mapfile -d '' -t args < "$out/session-args"
-  echo "noise-sessions: $name, $(< "$dir/perturbation")" >&2
-  rm -rf "${dir:?}/$name" "$dir/$name".*
-  if ! "$scanloc" session --log "$log" --out "$dir/$name" --force --quiet "${args[@]}" \
-    > "$dir/$name.session.txt" 2>&1; then
-    echo "p$i $name" >> "$out/failed"
-    return 0
-  fi
-  "$scanloc" evaluate --trajectory "$dir/$name/trajectory.tum" --relations "$relations" --json \
-    > "$dir/$name.evaluation.json" || echo "p$i $name" >> "$out/failed"
-  local local_relations=${relations%.relations}.local.relations
-  if [ -f "$local_relations" ]; then
-    "$scanloc" evaluate --trajectory "$dir/$name/trajectory.tum" --relations "$local_relations" \
-      --json > "$dir/$name.local.evaluation.json" || echo "p$i $name" >> "$out/failed"
-  fi
-}
-export -f run_one
-export out scanloc
+source scripts/score-session.sh
+export -f run_one score_session
+export out scanloc tag=noise-sessions
 xargs -0 -n 4 -P "${JOBS:-$(nproc)}" bash -c 'run_one "$@"' run_one < "$out/jobs"
 SCANLOC_DATASETS="$datasets" python3 scripts/robustness-summary.py "$out" "$seeds"

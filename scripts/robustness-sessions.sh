@@ -29,6 +29,10 @@ job() { printf '%s\0' "$@" >> "$out/jobs"; }
 for i in "${!perturbations[@]}"; do
   mkdir -p "$out/p$i"
   echo "${perturbations[$i]:-default}" > "$out/p$i/perturbation"
+  rm -f "$out/p$i/session-args"
+  if [ "${perturbations[$i]:-default}" != default ]; then
+    printf '%s\0' --set "${perturbations[$i]}" > "$out/p$i/session-args"
+  fi
   for log in intel aces fr079; do
     job "$i" "$log" "$datasets/$log.clf.gz" "$datasets/$log.relations"
   done
@@ -39,30 +43,8 @@ for i in "${!perturbations[@]}"; do
   done
 done
 
-# One session and its scores: run_one INDEX NAME LOG RELATIONS. The perturbation is read from
-# OUT_DIR/pINDEX/perturbation ("default": none).
-run_one() {
-  local i=$1 name=$2 log=$3 relations=$4 dir="$out/p$1" p args
-  mapfile -d '' -t args < "$out/session-args"
-  p=$(< "$dir/perturbation")
-  [ "$p" != default ] && args+=(--set "$p")
-  echo "robustness-sessions: $name $p" >&2
-  # Nothing of an earlier run in OUT_DIR may be scored in place of this one.
-  rm -rf "${dir:?}/$name" "$dir/$name".*
-  if ! "$scanloc" session --log "$log" --out "$dir/$name" --force --quiet "${args[@]}" \
-    > "$dir/$name.session.txt" 2>&1; then
-    echo "p$i $name" >> "$out/failed"
-    return 0
-  fi
-  "$scanloc" evaluate --trajectory "$dir/$name/trajectory.tum" --relations "$relations" --json \
-    > "$dir/$name.evaluation.json" || echo "p$i $name" >> "$out/failed"
-  local local_relations=${relations%.relations}.local.relations
-  if [ -f "$local_relations" ]; then
-    "$scanloc" evaluate --trajectory "$dir/$name/trajectory.tum" --relations "$local_relations" \
-      --json > "$dir/$name.local.evaluation.json" || echo "p$i $name" >> "$out/failed"
-  fi
-}
-export -f run_one
-export out scanloc
+source scripts/score-session.sh
+export -f run_one score_session
+export out scanloc tag=robustness-sessions
 xargs -0 -n 4 -P "${JOBS:-$(nproc)}" bash -c 'run_one "$@"' run_one < "$out/jobs"
 SCANLOC_DATASETS="$datasets" python3 scripts/robustness-summary.py "$out" "${#perturbations[@]}"
