@@ -17,6 +17,7 @@ extra=("$@")
 noise_m=${NOISE_M:-0.01}
 seeds=${SEEDS:-4}
 source scripts/public-logs.sh noise-sessions
+source scripts/score-session.sh
 logs="$out/logs"
 mkdir -p "$logs"
 rm -f "$out/jobs" "$out/failed"
@@ -45,8 +46,4 @@ for ((i = 0; i < seeds; ++i)); do
   done
 done
 
-source scripts/score-session.sh
-export -f run_one score_session
-export out scanloc tag=noise-sessions
-xargs -0 -n 4 -P "${JOBS:-$(nproc)}" bash -c 'run_one "$@"' run_one < "$out/jobs"
-SCANLOC_DATASETS="$datasets" python3 scripts/robustness-summary.py "$out" "$seeds"
+run_harness noise-sessions "$seeds"

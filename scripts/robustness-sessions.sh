@@ -16,6 +16,7 @@ out=${1:-build/robustness}
 shift || true
 extra=("$@")
 source scripts/public-logs.sh robustness-sessions
+source scripts/score-session.sh
 # The perturbations, one a line ("default": none), shared with the localise tests
 # (tests/localise_datasets_test.cpp).
 mapfile -t perturbations < scripts/perturbations.txt
@@ -43,8 +44,4 @@ for i in "${!perturbations[@]}"; do
   done
 done
 
-source scripts/score-session.sh
-export -f run_one score_session
-export out scanloc tag=robustness-sessions
-xargs -0 -n 4 -P "${JOBS:-$(nproc)}" bash -c 'run_one "$@"' run_one < "$out/jobs"
-SCANLOC_DATASETS="$datasets" python3 scripts/robustness-summary.py "$out" "${#perturbations[@]}"
+run_harness robustness-sessions "${#perturbations[@]}"

@@ -32,3 +32,13 @@ run_one() {
   echo "$tag: $2, $(< "$out/p$1/perturbation")" >&2
   score_session "$out" "$@" "${args[@]}" "${more[@]}"
 }
+
+# run_harness TAG COUNT: every job of OUT/jobs (INDEX NAME LOG RELATIONS, NUL-terminated), JOBS
+# at a time (default: the number of processors), then scripts/robustness-summary.py's table over
+# COUNT perturbations. Needs `out` and `datasets`.
+run_harness() {
+  export -f run_one score_session
+  export out scanloc tag=$1
+  xargs -0 -n 4 -P "${JOBS:-$(nproc)}" bash -c 'run_one "$@"' run_one < "$out/jobs"
+  SCANLOC_DATASETS="$datasets" python3 scripts/robustness-summary.py "$out" "$2"
+}
