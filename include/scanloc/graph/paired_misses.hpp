@@ -66,11 +66,11 @@ double PairedLogLikelihood(const std::vector<PairedMiss<K>>& closures,
 // second gains (χ² with 1 degree of freedom, or its half-mixture with 0, under a perfect odometry).
 // All zero without closures.
 // A statistic above `decisive_above` is tested again without the one event that gained the most
-// from λ_o; when less than half of the statistic is left, the test rested on that event, and the
-// smaller stands (with that test's scales). The event is a closure (when three or more were made:
-// with two, the one left would decide alone), or a place on the path: every stretch that overlaps
-// the stretch whose own term gained the most. One event can be wrong, and a disproof resting on it
-// is none:
+// from λ_o; when less than a quarter of the statistic is left, the test rested on that event, and
+// the smaller stands (with that test's scales). The event is a closure (when three or more were
+// made: with two, the one left would decide alone), or a place on the path: every stretch that
+// overlaps the stretch whose own term gained the most. One event can be wrong, and a disproof
+// resting on it is none:
 // - acapulco, perfect odometry, a laser 1 cm noisier: a closure matched 1.3° off rejected the
 //   odometry by itself (χ² 13.4), and the session followed its drifting matched chain.
 // - edmonton, the same: the tracker took a turned candidate 10° off after 14 unconfirmed scans,
