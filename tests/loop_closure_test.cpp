@@ -309,6 +309,69 @@ TEST(LoopCloser, AttemptsStartAfterTheNodesAndThePathSinceTheLastOne) {
   EXPECT_GT(by_nodes.size(), tried.size() + 5);
 }
 
+// The ring driven with the first test's drifting dead reckoning, closures tried as a session
+// tries them; the end's distance from the truth after Finish, m.
+double DriftingRingEndError(const LoopClosureOptions& options,
+                            std::vector<ClosureAttempt>& attempts) {
+  const Lap lap = DriveRing(testing::RingBuilding());
+  std::vector<Pose2D> drifted = {lap.truth[0]};
+  for (std::size_t i = 1; i < lap.truth.size(); ++i) {
+    const Pose2D step = Between(lap.truth[i - 1], lap.truth[i]);
+    drifted.push_back(drifted.back() *
+                      Pose2D(1.005 * step.x_m, 1.005 * step.y_m, step.yaw_rad * 1.013));
+  }
+  LoopCloser closer(options, LaserMounting{});
+  Pose2D estimate = drifted[0];
+  for (std::size_t i = 0; i < lap.truth.size(); ++i) {
+    if (i > 0) estimate = estimate * Between(drifted[i - 1], drifted[i]);
+    closer.AddNode(i, lap.scans[i], estimate, std::nullopt);
+    closer.Anchor(i, estimate);
+    const auto attempt = closer.MaybeClose(LocalisationOptions{}, PointMapOptions{});
+    if (!attempt) continue;
+    attempts.push_back(*attempt);
+    if (attempt->accepted) estimate = *closer.NewestNode();
+  }
+  closer.Finish();
+  const std::size_t last = lap.truth.size() - 1;
+  return (closer.CorrectedPostures()[last]->Translation() - lap.truth[last].Translation()).norm();
+}
+
+TEST(LoopCloser, ARunsMiddleScansSearchTheSmallestWindowAroundItsPostureItsFirstAndLastTheWhole) {
+  LoopClosureOptions options = Enabled();
+  options.confirm_from_run = true;
+  std::vector<ClosureAttempt> attempts;
+  const double end_error_m = DriftingRingEndError(options, attempts);
+  std::size_t in_run = 0, from_run = 0, accepted = 0;
+  for (const ClosureAttempt& attempt : attempts) {
+    const bool middle = in_run > 0 && in_run + 1 < static_cast<std::size_t>(options.confirm_after);
+    EXPECT_EQ(attempt.from_run, middle) << "attempt at node " << attempt.node;
+    // The middle's window is the minima's; the others' grow with the path since the old node.
+    if (middle) {
+      EXPECT_EQ(attempt.window.half_width_m, options.min_half_width_m);
+      EXPECT_EQ(attempt.window.half_yaw_rad, options.min_half_yaw_rad);
+    } else {
+      EXPECT_GT(attempt.window.half_width_m, options.min_half_width_m);
+    }
+    from_run += attempt.from_run;
+    accepted += attempt.accepted;
+    // The run's length after this scan: a validated scan that disagrees with the run starts
+    // another, as before.
+    in_run =
+        attempt.pending ? std::stoul(attempt.reason.substr(std::string("pending: ").size())) : 0;
+  }
+  EXPECT_GE(from_run, 3u);
+  EXPECT_GE(accepted, 1u);
+  // Every scan searching the whole window: the same ring, closed as well (both measured 7 cm).
+  options.confirm_from_run = false;
+  std::vector<ClosureAttempt> whole;
+  const double whole_end_error_m = DriftingRingEndError(options, whole);
+  for (const ClosureAttempt& attempt : whole) EXPECT_FALSE(attempt.from_run);
+  std::printf("end error %.3f m (middle scans from the run), %.3f m (every scan searching all)\n",
+              end_error_m, whole_end_error_m);
+  EXPECT_LT(end_error_m, 0.25);
+  EXPECT_LT(whole_end_error_m, 0.25);
+}
+
 // The scans of a confirmed batch share their local map's error: each closure edge carries at most
 // 1/confirm_after of the information its floors allow (the floors bound a closure's covariance
 // from below, the refinement's adds to it), so that the batch weighs as one closure.
@@ -372,7 +435,9 @@ TEST(LoopCloser, WithWindowSigmasTheWindowSpansTheGraphsUncertaintyAndBeyondItsM
       EXPECT_FALSE(attempt->test.has_value());
     } else {
       ++searched;
-      EXPECT_NEAR(attempt->window.half_width_m, needed_m, 1e-12);
+      // A run's middle scans search the smallest window, around where the run puts them.
+      EXPECT_NEAR(attempt->window.half_width_m,
+                  attempt->from_run ? options.min_half_width_m : needed_m, 1e-12);
       EXPECT_TRUE(attempt->test.has_value()) << attempt->reason;
     }
   }

@@ -341,6 +341,9 @@ void VisitLoopClosure(C& c, V& v) {
   v("loop_closure.agree_m", l.agree_m, Bounds{0, 1e3},
     "closures agree when their corrections differ by at most this, m ...");
   v("loop_closure.agree_rad", l.agree_rad, kAngle, "... and this, rad");
+  v("loop_closure.confirm_from_run", l.confirm_from_run,
+    "the scans between a run's first and last search only the smallest window, around where "
+    "the run puts them (the first and last search the whole window)");
   v("loop_closure.sigma_floor_m", l.sigma_floor_m, Bounds{1e-6, 1e3},
     "added to the refinement's position σ in the graph's edges, m ...");
   v("loop_closure.sigma_floor_rad", l.sigma_floor_rad, Bounds{1e-6, 10}, "... heading σ, rad");

@@ -55,6 +55,7 @@ void WriteClosure(JsonWriter& out, const ClosureAttempt& c) {
   out.Member(keys::kChainSigmaRad, c.chain_sigma_rad);
   out.Member(keys::kHalfWidthM, c.window.half_width_m);
   out.Member(keys::kHalfYawRad, c.window.half_yaw_rad);
+  out.Member(keys::kFromRun, c.from_run);
   out.Member(keys::kPredictedShiftM, c.predicted_shift_m);
   out.Member(keys::kSolveDeferred, c.solve_deferred);
   out.Member(keys::kLargestShiftM, c.largest_shift_m);

@@ -259,7 +259,16 @@ std::optional<ClosureAttempt> LoopCloser::Try(const LocalisationOptions& localis
     pending_.clear();
     return attempt;
   }
+  // A run's middle scans search the smallest window around where the run puts them (Confirm
+  // measures agreement from there); its first and last search the whole window.
+  attempt.from_run = options_.confirm_from_run && !pending_.empty() &&
+                     pending_.size() + 1 < static_cast<std::size_t>(options_.confirm_after);
   std::vector<Candidate> candidates{{T_world_robot, "session"}};
+  if (attempt.from_run) {
+    candidates = RunCandidates(newest);
+    attempt.window = {mounting_.LaserPose(candidates.front().T_world_robot),
+                      options_.min_half_width_m, options_.min_half_yaw_rad};
+  }
   const WideSearchResult search =
       WideSearch(view, scan, attempt.window, options_.search, &search_field_);
   for (std::size_t i = 0; i < search.candidates.size(); ++i)
@@ -270,6 +279,20 @@ std::optional<ClosureAttempt> LoopCloser::Try(const LocalisationOptions& localis
   if (!pending_.empty()) attempt.run_correction = pending_correction_;
   Judge(result, attempt);
   return attempt;
+}
+
+// Where the pending run puts the newest node: its correction applied to the session's posture,
+// and the previous node's match moved on by the odometry between the two (which holds where the
+// tracker turned the newest node wrong; a match refined from each that validated both, apart,
+// is ambiguous).
+std::vector<Candidate> LoopCloser::RunCandidates(std::size_t newest) const {
+  std::vector<Candidate> candidates{{pending_correction_ * graph_.nodes()[newest], "run"}};
+  const ClosureAttempt& previous = attempts_.back();
+  if (previous.node + 1 == newest && nodes_[previous.node].odometry && nodes_[newest].odometry)
+    candidates.push_back({previous.T_world_robot_matched *
+                              Between(*nodes_[previous.node].odometry, *nodes_[newest].odometry),
+                          "run+odometry"});
+  return candidates;
 }
 
 // The map rendered from the old nodes `old` at their current postures: the last attempt's when it

@@ -89,6 +89,7 @@ inline constexpr const char* kMatched = "T_world_robot_matched";
 inline constexpr const char* kTOldRobot = "T_old_robot";
 inline constexpr const char* kPredictedShiftM = "predicted_shift_m";
 inline constexpr const char* kSolveDeferred = "solve_deferred";
+inline constexpr const char* kFromRun = "from_run";
 inline constexpr const char* kSolveIterations = "solve_iterations";
 inline constexpr const char* kLargestShiftM = "largest_shift_m";
 inline constexpr const char* kRendered = "rendered";

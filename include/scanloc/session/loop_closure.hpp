@@ -69,6 +69,15 @@ struct LoopClosureOptions {
   int confirm_after = 5;
   double agree_m = 0.1;
   double agree_rad = 0.03;
+  // The scans between a run's first and its last search only the smallest window (the minima
+  // above) around where the run puts them: its correction applied to the session's posture, with
+  // the previous scan's match moved on by the odometry as a second start. What they add to the
+  // run is agreement (a validated match farther than agree_m or agree_rad from the run's starts
+  // another, as any does). The last scan, like the first, searches the whole window, so that a
+  // look-alike inside it still makes the run ambiguous before it is applied. Off by default: it
+  // takes 8 % of Intel's CPU off, but on ACES it keeps fewer closures and the maps it makes mislead
+  // `scanloc localise` (docs/BENCHMARKS.md, 2026-12-07).
+  bool confirm_from_run = false;
   // Floors added to the refinement's standard deviations (it knows only the scan's own noise, not
   // the map's): the edges' information is that of σ ⊕ floor.
   double sigma_floor_m = 0.005;
@@ -121,8 +130,10 @@ struct ClosureAttempt {
   double chain_sigma_m = 0.0;
   double chain_sigma_rad = 0.0;
   SearchWindow window;
-  bool accepted = false;         // validated, pinned, and kept by the graph
-  bool pending = false;          // validated and pinned, waiting for agreeing scans
+  // A run's middle scan: `window` is the smallest, around where the pending run puts the scan.
+  bool from_run = false;
+  bool accepted = false;  // validated, pinned, and kept by the graph
+  bool pending = false;   // validated and pinned, waiting for agreeing scans
   // The correction the closures pending before this one agreed on (the old nodes' frame seen from
   // the session's), when some were.
   std::optional<Pose2D> run_correction;
@@ -249,6 +260,7 @@ class LoopCloser {
   std::vector<std::size_t> OldNodesNear(const Pose2D& T_world_robot, double path_m) const;
   std::optional<ClosureAttempt> Try(const LocalisationOptions& localisation,
                                     const PointMapOptions& map_options);
+  std::vector<Candidate> RunCandidates(std::size_t newest) const;
   const PointMap& LocalMap(const std::vector<std::size_t>& old, const PointMapOptions& map_options);
   bool FitWindow(ClosureAttempt& attempt) const;
   void Judge(const LocalisationResult& result, ClosureAttempt& attempt);
