@@ -42,6 +42,18 @@ Lap DriveRing(const LineMap& world) {
   return lap;
 }
 
+// Dead reckoning with a heading error of 0.02 rad per 90° turn and 0.5 % scale: metres off after
+// the first lap.
+std::vector<Pose2D> DeadReckoning(const Lap& lap) {
+  std::vector<Pose2D> drifted = {lap.truth[0]};
+  for (std::size_t i = 1; i < lap.truth.size(); ++i) {
+    const Pose2D step = Between(lap.truth[i - 1], lap.truth[i]);
+    drifted.push_back(drifted.back() *
+                      Pose2D(1.005 * step.x_m, 1.005 * step.y_m, step.yaw_rad * 1.013));
+  }
+  return drifted;
+}
+
 LoopClosureOptions Enabled() {
   LoopClosureOptions options;
   options.enabled = true;
@@ -52,14 +64,7 @@ TEST(LoopCloser, ComingBackToTheStartCorrectsTheDriftOfTheNodes) {
   const LineMap world = testing::RingBuilding();
   const Lap lap = DriveRing(world);
   ASSERT_GT(lap.truth.size(), 150u);
-  // Dead reckoning with a heading error of 0.02 rad per 90° turn and 0.5 % scale: metres off
-  // after the first lap.
-  std::vector<Pose2D> drifted = {lap.truth[0]};
-  for (std::size_t i = 1; i < lap.truth.size(); ++i) {
-    const Pose2D step = Between(lap.truth[i - 1], lap.truth[i]);
-    drifted.push_back(drifted.back() *
-                      Pose2D(1.005 * step.x_m, 1.005 * step.y_m, step.yaw_rad * 1.013));
-  }
+  const std::vector<Pose2D> drifted = DeadReckoning(lap);
   LoopClosureOptions options = Enabled();
   LoopCloser closer(options, LaserMounting{});
   LocalisationOptions localisation;
@@ -126,12 +131,7 @@ TEST(LoopCloser, ComingBackToTheStartCorrectsTheDriftOfTheNodes) {
 // chain missed by metres, so the graph comes to follow the odometry between them.
 TEST(LoopCloser, APerfectOdometryTaughtByTheClosuresHoldsEveryNodeWithinFiveCentimetres) {
   const Lap lap = DriveRing(testing::RingBuilding());
-  std::vector<Pose2D> drifted = {lap.truth[0]};
-  for (std::size_t i = 1; i < lap.truth.size(); ++i) {
-    const Pose2D step = Between(lap.truth[i - 1], lap.truth[i]);
-    drifted.push_back(drifted.back() *
-                      Pose2D(1.005 * step.x_m, 1.005 * step.y_m, step.yaw_rad * 1.013));
-  }
+  const std::vector<Pose2D> drifted = DeadReckoning(lap);
   auto run = [&](bool odometry_edges, const std::vector<Pose2D>& odometry) {
     LoopClosureOptions options = Enabled();
     options.odometry_edges = odometry_edges;
@@ -314,12 +314,7 @@ TEST(LoopCloser, AttemptsStartAfterTheNodesAndThePathSinceTheLastOne) {
 double DriftingRingEndError(const LoopClosureOptions& options,
                             std::vector<ClosureAttempt>& attempts) {
   const Lap lap = DriveRing(testing::RingBuilding());
-  std::vector<Pose2D> drifted = {lap.truth[0]};
-  for (std::size_t i = 1; i < lap.truth.size(); ++i) {
-    const Pose2D step = Between(lap.truth[i - 1], lap.truth[i]);
-    drifted.push_back(drifted.back() *
-                      Pose2D(1.005 * step.x_m, 1.005 * step.y_m, step.yaw_rad * 1.013));
-  }
+  const std::vector<Pose2D> drifted = DeadReckoning(lap);
   LoopCloser closer(options, LaserMounting{});
   Pose2D estimate = drifted[0];
   for (std::size_t i = 0; i < lap.truth.size(); ++i) {
