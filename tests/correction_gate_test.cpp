@@ -110,6 +110,30 @@ TEST(CorrectionGate, ASlideByARefinementThatDidNotConvergeIsRefusedWhateverItsCo
       gate.Refuses(prediction, Pose2D{1.1, 1.0, 0.0}, RefinementSupport{0.8, round, false}, 0));
 }
 
+// Before the slide check has learned, no correction is large: a slide is told by the
+// refinement alone (orebro, a laser 1 cm noisier: scan 11 slid 0.35 m along a weak axis in 15
+// outer iterations, 8 scans into the session).
+TEST(CorrectionGate, ASlideIsARefinementStillMovingAlongItsWeakestAxisWhateverItsSize) {
+  const Eigen::Matrix2d corridor = Eigen::Vector2d(0.04 * 0.04, 0.01 * 0.01).asDiagonal();
+  const Pose2D prediction{1.0, 1.0, 0.0};
+  const CorrectionGate gate;  // nothing learned
+  // 2 cm along the corridor, not converged: a slide, however small.
+  EXPECT_TRUE(
+      gate.Slides(prediction, Pose2D{1.02, 1.0, 0.0}, RefinementSupport{0.8, corridor, false}));
+  // Converged there: the refinement stopped where the scan put it.
+  EXPECT_FALSE(
+      gate.Slides(prediction, Pose2D{1.02, 1.0, 0.0}, RefinementSupport{0.8, corridor, true}));
+  // Across the corridor (the best-constrained direction), or along a direction 2.9 times weaker
+  // than the best (< 3): not along the weak axis.
+  EXPECT_FALSE(
+      gate.Slides(prediction, Pose2D{1.0, 1.5, 0.0}, RefinementSupport{0.8, corridor, false}));
+  const Eigen::Matrix2d nearly = Eigen::Vector2d(0.029 * 0.029, 0.01 * 0.01).asDiagonal();
+  EXPECT_FALSE(
+      gate.Slides(prediction, Pose2D{1.5, 1.0, 0.0}, RefinementSupport{0.8, nearly, false}));
+  // No covariance, nothing says the direction is weak.
+  EXPECT_FALSE(gate.Slides(prediction, Pose2D{1.5, 1.0, 0.0}, RefinementSupport{0.8, {}, false}));
+}
+
 TEST(CorrectionGate, ARefusedPostureTheNextScanAgreesWithIsKept) {
   CorrectionGate gate = Learned();
   const Pose2D prediction{0.0, 0.0, 0.0};

@@ -207,7 +207,8 @@ void VisitSession(C& c, V& v) {
   v("session.correction_drift_samples", s.correction_drift.samples, Bounds{1, 1e6},
     "slide check: sums remembered (the most recent)");
   v("session.correction_drift_min_samples", s.correction_drift.min_samples, Bounds{1, 1e6},
-    "slide check: sums learned before it closes");
+    "slide check: sums learned before it closes (until then a refinement stopped at its "
+    "iteration cap still moving along its weakest axis is refused as a slide)");
   v("session.free_space_margin_m", s.extension.free_space_margin_m, Bounds{0, 100},
     "carving: a point more than margin + margin_per_m·r in front of a return is seen through, m; "
     "0: no carving");

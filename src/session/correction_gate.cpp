@@ -104,6 +104,13 @@ bool CorrectionGate::Refuses(const Pose2D& prediction, const Pose2D& refined,
   return true;
 }
 
+bool CorrectionGate::Slides(const Pose2D& prediction, const Pose2D& refined,
+                            const RefinementSupport& support) const {
+  if (support.converged || !support.position_covariance) return false;
+  const Eigen::Vector2d moved(refined.x_m - prediction.x_m, refined.y_m - prediction.y_m);
+  return WeakAxisRatio(*support.position_covariance, moved) >= options_.weak_axis_ratio;
+}
+
 void CorrectionGate::Moved(const Pose2D& odometry_increment) {
   if (refused_) refused_ = *refused_ * odometry_increment;
 }

@@ -301,9 +301,14 @@ void Session::JudgeCorrection(IterationRecord& record, const RankedCandidate& ke
     record.slide_check = correction_drift_.Check(
         kept.T_world_robot.Translation() - record.prediction.Translation(),
         record.correction_bound ? record.correction_bound->translation_m : 0.0);
+  // Before the slide check has learned its bound, the refinement's own evidence of a slide.
+  const bool learning = options_.correction_drift.window_m > 0.0 && !record.slide_check;
+  const bool slides = record.slide_check
+                          ? record.slide_check->Refused()
+                          : learning && record.validated &&
+                                gate_.Slides(record.prediction, kept.T_world_robot, support);
   record.slide_refused =
-      record.slide_check && record.slide_check->Refused() &&
-      record.localisation->evaluated.front().verdict == Verdict::kValid &&
+      slides && record.localisation->evaluated.front().verdict == Verdict::kValid &&
       !PredictionDisproved(*record.localisation, options_.prediction_disproved_cost_ratio);
 }
 

@@ -90,6 +90,11 @@ class CorrectionGate {
   // localised scan; it becomes the refused posture when it does (none when it does not).
   bool Refuses(const Pose2D& prediction, const Pose2D& refined, const RefinementSupport& support,
                int unconfirmed);
+  // Whether the refinement `refined` is a slide still under way: it stopped at its iteration cap
+  // (not converged), moving away from `prediction` along a direction weak_axis_ratio times less
+  // constrained than the best. Whatever its size: for the scans before the slide check learns.
+  bool Slides(const Pose2D& prediction, const Pose2D& refined,
+              const RefinementSupport& support) const;
   // The refused posture follows the odometry.
   void Moved(const Pose2D& odometry_increment);
   // Resuming: the posture the recorded scan refused (none when it refused nothing).
