@@ -4,6 +4,7 @@
   scripts/log-variants.py sparse LOG.clf.gz REFERENCE OUT.clf OUT.relations
   scripts/log-variants.py short-range LOG.clf.gz OUT.clf [RANGE_M]
   scripts/log-variants.py range-noise LOG.clf.gz OUT.clf [SIGMA_M [SEED]]
+  scripts/log-variants.py narrow LOG.clf.gz OUT.clf [FOV_DEG]
 
 - sparse: only the scans with a reference pose, one after every 0.8 m or 0.3 rad of the log's
   odometry (a log kept as the Radish logs are, a scan every metre or so). Every other line (ODOM,
@@ -15,6 +16,9 @@
 - range-noise: every FLASER reading below the log's largest (its no-return value) gains Gaussian
   noise of SIGMA_M (default 0.03, a laser four to six times noisier than the logs' SICKs; SEED, 1),
   kept at 0.01 m or more. The log's own relations still apply.
+- narrow: every FLASER reading more than FOV_DEG/2 (default 120/2) from straight ahead becomes the
+  log's no-return value (its largest reading): a laser that sees less to the sides (a narrower
+  scanner, or one half hidden by the robot's own body). The log's own relations still apply.
 """
 import bisect
 import gzip
@@ -118,6 +122,25 @@ def range_noise(log, out_log, sigma_m, seed):
             out.write(line)
 
 
+def narrow(log, out_log, fov_deg):
+    no_return = 0.0
+    for line in lines(log):
+        f = line.split()
+        if f and f[0] == "FLASER":
+            n, _ = flaser(f)
+            no_return = max([no_return] + [float(r) for r in f[2:2 + n]])
+    with open(out_log, "w") as out:
+        for line in lines(log):
+            f = line.split()
+            if f and f[0] == "FLASER":
+                n, rest = flaser(f)
+                # A FLASER scan spans 180°, beam 0 on the right.
+                kept = [abs((k + 0.5) / n - 0.5) * 180.0 <= fov_deg / 2 for k in range(n)]
+                ranges = [r if keep else "%.3f" % no_return for r, keep in zip(f[2:2 + n], kept)]
+                line = " ".join(f[:2] + ranges + rest) + "\n"
+            out.write(line)
+
+
 def main():
     if len(sys.argv) >= 6 and sys.argv[1] == "sparse":
         sparse(*sys.argv[2:6])
@@ -126,6 +149,8 @@ def main():
     elif len(sys.argv) in (4, 5, 6) and sys.argv[1] == "range-noise":
         range_noise(sys.argv[2], sys.argv[3], float(sys.argv[4]) if len(sys.argv) >= 5 else 0.03,
                     int(sys.argv[5]) if len(sys.argv) == 6 else 1)
+    elif len(sys.argv) in (4, 5) and sys.argv[1] == "narrow":
+        narrow(sys.argv[2], sys.argv[3], float(sys.argv[4]) if len(sys.argv) == 5 else 120.0)
     else:
         sys.exit(__doc__.strip())
 
