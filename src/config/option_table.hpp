@@ -152,6 +152,9 @@ void VisitSession(C& c, V& v) {
   v("session.insert_rotation_rad", s.insert_rotation_rad, kAngle, "... or turned this, rad");
   v("session.insert_unvalidated", s.insert_unvalidated,
     "let scans that were not validated extend the map");
+  v("session.map_new_ground", s.map_new_ground,
+    "an unconfirmed scan that kept the prediction where the map, seen from there, pairs with fewer "
+    "of its beams than rule 1's ratio extends the map at the prediction (not while lost)");
   v("session.unconfirmed_takes_prediction", s.unconfirmed_takes_prediction,
     "a scan the rules do not confirm keeps the odometry prediction, not its refinement ...");
   v("session.prediction_disproved_cost_ratio", s.prediction_disproved_cost_ratio, Bounds{1, 100},

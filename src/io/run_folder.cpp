@@ -126,6 +126,8 @@ void WriteOutcome(JsonWriter& out, const IterationRecord& r) {
   out.Member(keys::kValidated, r.validated);
   out.Member(keys::kReason, ToString(r.verdict));
   out.Member(keys::kInserted, r.inserted);
+  // Extended the map at the prediction, on new ground (new_ground.hpp).
+  if (r.new_ground) out.Member(keys::kNewGround, true);
   out.Member(keys::kCarved, r.carved);
   out.Member(keys::kMapPoints, r.map_points);
   out.Key(keys::kTimingsMs);

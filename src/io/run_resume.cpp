@@ -131,6 +131,7 @@ RecordedIteration RecordedFromJson(const json& record) {
     r.lost = FlagOr(record, keys::kLost, false);
     r.recovered = FlagOr(record, keys::kRecovered, false);
     r.inserted = record.at(keys::kInserted).get<bool>();
+    r.new_ground = FlagOr(record, keys::kNewGround, false);
     r.carved = Count(record, keys::kCarved);
     r.map_points = Count(record, keys::kMapPoints);
     AddOptionalParts(record, r);

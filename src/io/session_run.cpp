@@ -127,6 +127,7 @@ void SessionCounts::Add(const IterationRecord& record) {
   recoveries += record.recovered;
   refused_corrections += record.beyond_odometry;
   slide_refusals += record.slide_refused;
+  new_ground += record.new_ground;
   disputed_turns += record.turn_dispute.has_value();
   tighter_refinements += record.outranked_refinement >= 0;
   lost_stretches += record.lost && !was_lost;
@@ -282,6 +283,7 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
       {"recoveries", c.recoveries},
       {"refused_corrections", c.refused_corrections},
       {"slide_refusals", c.slide_refusals},
+      {"new_ground_insertions", c.new_ground},
       {"turns_disputed_by_closures", c.disputed_turns},
       {"tighter_refinements_kept", c.tighter_refinements},
       {"lost_at_end", c.was_lost},

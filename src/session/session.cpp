@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "scanloc/session/new_ground.hpp"
 #include "scanloc/session/tighter_refinement.hpp"
 
 namespace scanloc {
@@ -126,6 +127,7 @@ IterationRecord Session::Step(const Iteration& given, const RecordedIteration* r
     LocaliseInto(record, iteration);
   }
   record.without_odometry = !record.skipped && !record.first && !iteration.odometry;
+  record.new_ground = recorded ? recorded->new_ground : OnNewGround(record, iteration.scan);
   MaybeExtend(record, iteration.scan);
   if (count_ == 0 && iteration.odometry) last_localised_odometry_ = *iteration.odometry;
   last_pose_ = record.T_world_robot;
@@ -443,8 +445,22 @@ void Session::Search(IterationRecord& record, const LaserScan& scan,
 
 // A validated scan (or any localised one, with insert_unvalidated) extends the map once the
 // robot moved far enough from where the last one did.
+// An unconfirmed scan that kept the prediction where the map covers too little of it to judge it
+// (new_ground.hpp), the session not lost.
+bool Session::OnNewGround(const IterationRecord& record, const LaserScan& scan) const {
+  const RankedCandidate* kept = record.Kept();
+  if (!options_.map_new_ground || record.validated || record.skipped || record.lost || !kept ||
+      record.localisation->evaluated.empty() ||
+      (kept->verdict != Verdict::kLowMatchRatio && kept->verdict != Verdict::kNoValidPairs) ||
+      !(record.T_world_robot.Translation() == record.prediction.Translation()))
+    return false;
+  return CoversTooLittle(record.localisation->evaluated.front().test, scan.CountValid(),
+                         localisation_.validation.min_match_ratio);
+}
+
 void Session::MaybeExtend(IterationRecord& record, const LaserScan& scan) {
-  const bool may_insert = record.validated || (options_.insert_unvalidated && !record.skipped);
+  const bool may_insert =
+      record.validated || record.new_ground || (options_.insert_unvalidated && !record.skipped);
   if (!may_insert || (last_inserted_pose_ &&
                       !MovedMoreThan(*last_inserted_pose_, record.T_world_robot,
                                      options_.insert_translation_m, options_.insert_rotation_rad)))

@@ -44,6 +44,7 @@ inline constexpr const char* kIndex = "index";
 inline constexpr const char* kInitialTWorldRobot = "initial_T_world_robot";
 inline constexpr const char* kInsert = "insert";
 inline constexpr const char* kInserted = "inserted";
+inline constexpr const char* kNewGround = "new_ground";
 inline constexpr const char* kIterations = "iterations";
 inline constexpr const char* kLabel = "label";
 inline constexpr const char* kLost = "lost";

@@ -37,6 +37,7 @@ struct SessionCounts {
   // Refinements the correction gate refused (the scan kept the odometry's prediction).
   std::size_t refused_corrections = 0;
   std::size_t slide_refusals = 0;  // confirmed corrections refused as a slide
+  std::size_t new_ground = 0;      // unconfirmed scans that extended the map on new ground
   std::size_t disputed_turns = 0;  // corrections a closure's dispute withdrew
   // Scans that kept a tighter refinement than the rules' best (tighter_refinement.hpp).
   std::size_t tighter_refinements = 0;

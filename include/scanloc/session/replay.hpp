@@ -44,6 +44,7 @@ struct RecordedIteration {
   int outranked_refinement = -1;
   bool searched = false, lost = false, recovered = false;
   bool inserted = false;
+  bool new_ground = false;  // extended the map on new ground (new_ground.hpp)
   std::size_t carved = 0, map_points = 0;
   bool closure_tried = false, closure_accepted = false, closure_rendered = false;
 };

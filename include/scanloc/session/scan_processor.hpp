@@ -108,9 +108,12 @@ struct IterationRecord {
   // costlier than another beyond chance).
   std::vector<std::string> discarded;
   bool posed = true;
-  bool lost = false;           // lost after this scan (several unconfirmed in a row)
-  bool recovered = false;      // confirmed after being lost
-  bool inserted = false;       // the scan extended the map
+  bool lost = false;       // lost after this scan (several unconfirmed in a row)
+  bool recovered = false;  // confirmed after being lost
+  bool inserted = false;   // the scan extended the map
+  // Unconfirmed, the scan kept the prediction where the map covers too little of it to judge it,
+  // and extends the map there (new_ground.hpp).
+  bool new_ground = false;
   std::size_t carved = 0;      // map points removed by this scan's free space
   std::size_t map_points = 0;  // after this iteration
   // The loop closure tried after this scan extended the map, when one was due.

@@ -75,6 +75,9 @@ struct SessionOptions {
   MapExtensionOptions extension;
   bool insert_unvalidated =
       false;  // let non-validated scans extend the map (off: they are flagged)
+  // An unconfirmed scan that kept the prediction where the map covers too little of it to judge it
+  // (new_ground.hpp) extends the map at the prediction, unless the session is lost.
+  bool map_new_ground = true;
   // A scan the rules do not confirm keeps the odometry prediction from the last posture rather
   // than its unconfirmed refinement: the session is never worse than the odometry it cannot
   // disprove.
@@ -211,6 +214,7 @@ class Session : public ScanProcessor {
                       const Iteration& iteration) const;
   // The drift after a localised scan, confirmed or not; `was_lost` before it.
   void AfterLocalised(IterationRecord& record, const Iteration& iteration, bool was_lost);
+  bool OnNewGround(const IterationRecord& record, const LaserScan& scan) const;
   void MaybeExtend(IterationRecord& record, const LaserScan& scan);
   void MaybeCloseLoop(IterationRecord& record, const Iteration& iteration,
                       const std::optional<Eigen::Matrix3d>& covariance);
