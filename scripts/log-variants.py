@@ -103,13 +103,19 @@ def short_range(log, out_log, range_m):
             out.write(line)
 
 
-def range_noise(log, out_log, sigma_m, seed):
+def largest_reading(log):
+    """The log's no-return value: its largest FLASER reading."""
     no_return = 0.0
     for line in lines(log):
         f = line.split()
         if f and f[0] == "FLASER":
             n, _ = flaser(f)
             no_return = max([no_return] + [float(r) for r in f[2:2 + n]])
+    return no_return
+
+
+def range_noise(log, out_log, sigma_m, seed):
+    no_return = largest_reading(log)
     rng = random.Random(seed)
     with open(out_log, "w") as out:
         for line in lines(log):
@@ -123,12 +129,7 @@ def range_noise(log, out_log, sigma_m, seed):
 
 
 def narrow(log, out_log, fov_deg):
-    no_return = 0.0
-    for line in lines(log):
-        f = line.split()
-        if f and f[0] == "FLASER":
-            n, _ = flaser(f)
-            no_return = max([no_return] + [float(r) for r in f[2:2 + n]])
+    no_return = largest_reading(log)
     with open(out_log, "w") as out:
         for line in lines(log):
             f = line.split()

@@ -37,6 +37,19 @@ class SessionOnRadishLog : public testing::TemporaryDirTest {
     run_ = testing::RunScanloc(args, dir_);
     return EvaluateRelations(testing::RunLaserPoses(out_), ReadRelations(relations));
   }
+  // radish/NAME.KIND.clf.gz as scripts/log-variants.py VARIANT ARGUMENTS... writes it, into OUT
+  // under the test's folder; "" when the script failed (the test then fails saying so).
+  std::string Variant(const std::string& variant, const std::string& name, const std::string& kind,
+                      const std::string& out, const std::vector<std::string>& arguments) {
+    const std::string log = dir_ + "/" + out;
+    std::vector<std::string> words = {
+        "python3", std::string(SCANLOC_SOURCE_DIR) + "/scripts/log-variants.py", variant,
+        testing::DatasetsDir() + "/radish/" + name + "." + kind + ".clf.gz", log};
+    words.insert(words.end(), arguments.begin(), arguments.end());
+    const auto made = testing::RunCommand(words, dir_);
+    EXPECT_TRUE(made.exited && made.exit_code == 0) << made.err;
+    return made.exited && made.exit_code == 0 ? log : "";
+  }
   nlohmann::json Summary() const {
     std::ifstream in(out_ + "/summary.json");
     return nlohmann::json::parse(in);
@@ -83,14 +96,10 @@ TEST_F(SessionOnRadishLog, OrebroWithNoisyOdometryHoldsLocallyUnderHalfAMetreOnc
 // 2026-12-07, local max 0.40 m, 0.293 m mean.
 TEST_F(SessionOnRadishLog, OrebroWithANoisierLaserHoldsLocallyOnceAnEarlySlideIsRefused) {
   SKIP_WITHOUT_LOGS();
-  const std::string radish = testing::DatasetsDir() + "/radish/";
-  const std::string log = dir_ + "/orebro.noisy.n0.01.s2.clf";
-  const auto made =
-      testing::RunCommand({"python3", std::string(SCANLOC_SOURCE_DIR) + "/scripts/log-variants.py",
-                           "range-noise", radish + "orebro.noisy.clf.gz", log, "0.01", "2"},
-                          dir_);
-  ASSERT_TRUE(made.exited && made.exit_code == 0) << made.err;
-  EXPECT_LT(RunOn(log, "orebro-n2", radish + "orebro.local.relations").translation_m.max, 0.5);
+  const std::string log = Variant("range-noise", "orebro", "noisy", "orebro-n2.clf", {"0.01", "2"});
+  ASSERT_FALSE(log.empty());
+  const std::string relations = testing::DatasetsDir() + "/radish/orebro.local.relations";
+  EXPECT_LT(RunOn(log, "orebro-n2", relations).translation_m.max, 0.5);
   EXPECT_TRUE(run_.exited && run_.exit_code == 0) << run_;
   EXPECT_GE(Summary()["slide_refusals"].get<int>(), 1);
 }
@@ -102,14 +111,10 @@ TEST_F(SessionOnRadishLog, OrebroWithANoisierLaserHoldsLocallyOnceAnEarlySlideIs
 // confirmed, 0.88 m mean.
 TEST_F(SessionOnRadishLog, AcapulcoSeenOver120DegreesMapsOnAlongTheOdometryWhereItHasNoMap) {
   SKIP_WITHOUT_LOGS();
-  const std::string radish = testing::DatasetsDir() + "/radish/";
-  const std::string log = dir_ + "/acapulco.noisy.narrow.clf";
-  const auto made =
-      testing::RunCommand({"python3", std::string(SCANLOC_SOURCE_DIR) + "/scripts/log-variants.py",
-                           "narrow", radish + "acapulco.noisy.clf.gz", log, "120"},
-                          dir_);
-  ASSERT_TRUE(made.exited && made.exit_code == 0) << made.err;
-  EXPECT_LT(RunOn(log, "acapulco-narrow", radish + "acapulco.relations").translation_m.mean, 2.0);
+  const std::string log = Variant("narrow", "acapulco", "noisy", "acapulco-120.clf", {"120"});
+  ASSERT_FALSE(log.empty());
+  const std::string relations = testing::DatasetsDir() + "/radish/acapulco.relations";
+  EXPECT_LT(RunOn(log, "acapulco-120", relations).translation_m.mean, 2.0);
   EXPECT_TRUE(run_.exited && run_.exit_code == 0) << run_;
   EXPECT_GT(Summary()["validated"].get<int>(), 700);
   EXPECT_GE(Summary()["new_ground_insertions"].get<int>(), 1);
