@@ -443,8 +443,6 @@ void Session::Search(IterationRecord& record, const LaserScan& scan,
                           "search" + std::to_string(i)});
 }
 
-// A validated scan (or any localised one, with insert_unvalidated) extends the map once the
-// robot moved far enough from where the last one did.
 // An unconfirmed scan that kept the prediction where the map covers too little of it to judge it
 // (new_ground.hpp), the session not lost.
 bool Session::OnNewGround(const IterationRecord& record, const LaserScan& scan) const {
@@ -458,6 +456,8 @@ bool Session::OnNewGround(const IterationRecord& record, const LaserScan& scan) 
                          localisation_.validation.min_match_ratio);
 }
 
+// A validated scan, one on new ground (or any localised one, with insert_unvalidated) extends the
+// map once the robot moved far enough from where the last one did.
 void Session::MaybeExtend(IterationRecord& record, const LaserScan& scan) {
   const bool may_insert =
       record.validated || record.new_ground || (options_.insert_unvalidated && !record.skipped);
