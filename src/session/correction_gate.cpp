@@ -83,11 +83,7 @@ bool CorrectionGate::Unsupported(const CorrectionBound& bound, const Pose2D& pre
   // A slide: beyond the bound in position only (a turn where the odometry slipped moves the
   // position with the heading), along the weak axis or still under way.
   if (bound.ExceededInHeading(correction)) return false;
-  if (!support.converged) return true;
-  return support.position_covariance &&
-         WeakAxisRatio(*support.position_covariance,
-                       Eigen::Vector2d(refined.x_m - prediction.x_m,
-                                       refined.y_m - prediction.y_m)) >= options_.weak_axis_ratio;
+  return !support.converged || AlongWeakAxis(prediction, refined, support);
 }
 
 bool CorrectionGate::Refuses(const Pose2D& prediction, const Pose2D& refined,
@@ -106,9 +102,15 @@ bool CorrectionGate::Refuses(const Pose2D& prediction, const Pose2D& refined,
 
 bool CorrectionGate::Slides(const Pose2D& prediction, const Pose2D& refined,
                             const RefinementSupport& support) const {
-  if (support.converged || !support.position_covariance) return false;
-  const Eigen::Vector2d moved(refined.x_m - prediction.x_m, refined.y_m - prediction.y_m);
-  return WeakAxisRatio(*support.position_covariance, moved) >= options_.weak_axis_ratio;
+  return !support.converged && AlongWeakAxis(prediction, refined, support);
+}
+
+bool CorrectionGate::AlongWeakAxis(const Pose2D& prediction, const Pose2D& refined,
+                                   const RefinementSupport& support) const {
+  return support.position_covariance &&
+         WeakAxisRatio(*support.position_covariance,
+                       Eigen::Vector2d(refined.x_m - prediction.x_m,
+                                       refined.y_m - prediction.y_m)) >= options_.weak_axis_ratio;
 }
 
 void CorrectionGate::Moved(const Pose2D& odometry_increment) {

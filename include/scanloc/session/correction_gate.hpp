@@ -105,6 +105,10 @@ class CorrectionGate {
   SortedWindow translations_m_, rotations_rad_, match_ratios_;
   std::optional<Pose2D> refused_;
 
+  // Whether the refinement moved the position along a direction weak_axis_ratio times less
+  // constrained (its covariance) than the best; false without a covariance.
+  bool AlongWeakAxis(const Pose2D& prediction, const Pose2D& refined,
+                     const RefinementSupport& support) const;
   // Whether the scan fails to support a correction beyond `bound` (see the options).
   bool Unsupported(const CorrectionBound& bound, const Pose2D& prediction, const Pose2D& refined,
                    const RefinementSupport& support) const;
