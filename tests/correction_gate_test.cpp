@@ -110,6 +110,39 @@ TEST(CorrectionGate, ASlideByARefinementThatDidNotConvergeIsRefusedWhateverItsCo
       gate.Refuses(prediction, Pose2D{1.1, 1.0, 0.0}, RefinementSupport{0.8, round, false}, 0));
 }
 
+// A refinement the rules rejected supports no correction beyond the bound: not a turn (ACES seen
+// over 120°: 55° and 6.4 m on a scan rule 2 rejected), not a converged fit on a round covariance.
+TEST(CorrectionGate, AnUnvalidatedCorrectionBeyondTheBoundIsRefusedWhateverItsSupport) {
+  const Eigen::Matrix2d round = Eigen::Vector2d(0.01 * 0.01, 0.01 * 0.01).asDiagonal();
+  const Pose2D prediction{1.0, 1.0, 0.0};
+  const Pose2D turned{1.5, 1.0, 0.5}, moved{1.5, 1.0, 0.0}, near{1.1, 1.0, 0.03};
+  for (const Pose2D& refined : {turned, moved}) {
+    CorrectionGate gate = Learned();
+    EXPECT_TRUE(gate.Refuses(prediction, refined, RefinementSupport{0.8, round, true, false}, 0));
+    gate = Learned();  // validated: the turn and the converged fit stand
+    EXPECT_FALSE(gate.Refuses(prediction, refined, RefinementSupport{0.8, round, true, true}, 0));
+  }
+  // Within the bound (0.16 m, 0.04 rad) an unvalidated refinement is not the gate's to judge.
+  CorrectionGate gate = Learned();
+  EXPECT_FALSE(gate.Refuses(prediction, near, RefinementSupport{0.8, round, true, false}, 0));
+  // The next scan lands on the refused turn: rejected by the rules too, it is no evidence of a
+  // slipping odometry (ACES over 120°, scans 3724–3725: both from the candidates turned 10°);
+  // validated, it is.
+  const Pose2D step{0.5, 0.0, 0.0};
+  for (const bool validated : {false, true}) {
+    gate = Learned();
+    ASSERT_TRUE(gate.Refuses(prediction, turned, RefinementSupport{0.8, round, true, false}, 0));
+    gate.Moved(step);
+    EXPECT_EQ(gate.Refuses(prediction * step, turned * step,
+                           RefinementSupport{0.8, round, true, validated}, 1),
+              !validated);
+  }
+  CorrectionGateOptions off;
+  off.refuse_unvalidated = false;
+  gate = Learned(off);
+  EXPECT_FALSE(gate.Refuses(prediction, turned, RefinementSupport{0.8, round, true, false}, 0));
+}
+
 // Before the slide check has learned, no correction is large: a slide is told by the
 // refinement alone (orebro, a laser 1 cm noisier: scan 11 slid 0.35 m along a weak axis in 15
 // outer iterations, 8 scans into the session).

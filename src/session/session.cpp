@@ -295,6 +295,7 @@ void Session::JudgeCorrection(IterationRecord& record, const RankedCandidate& ke
   if (kept.refinement && kept.refinement->has_covariance)
     support.position_covariance = kept.refinement->covariance.topLeftCorner<2, 2>();
   if (kept.refinement) support.converged = kept.refinement->converged;
+  support.validated = record.validated;
   record.beyond_odometry =
       gate_.Refuses(record.prediction, kept.T_world_robot, support, drift_.unconfirmed());
   if (record.beyond_odometry) record.validated = false;

@@ -43,6 +43,13 @@ struct CorrectionGateOptions {
   // standard deviation (the refinement's covariance) is at least this many times the
   // best-constrained direction's, or by a refinement that did not converge.
   double weak_axis_ratio = 3.0;
+  // A correction beyond the bound by a refinement the rules did not validate is refused whatever
+  // its support: the exemptions above (a turn where the odometry slipped, a converged fit along
+  // well-constrained directions, a refused posture the next scan agrees with) need a scan the
+  // rules accept. ACES seen over 120° turned 55° and
+  // moved 6.4 m on a scan rule 2 rejected, 150 unconfirmed scans into a cluttered stretch
+  // (docs/BENCHMARKS.md, "Unvalidated corrections, and a batch its own lesson bent away").
+  bool refuse_unvalidated = true;
   // Throws std::invalid_argument naming the first option out of its domain.
   void Validate() const;
 };
@@ -65,6 +72,7 @@ struct RefinementSupport {
   double match_ratio = 0.0;
   std::optional<Eigen::Matrix2d> position_covariance;
   bool converged = true;
+  bool validated = true;  // the rules validated the refinement
 };
 
 // The standard deviation of `covariance` along `direction` over its smallest one (1 when the
