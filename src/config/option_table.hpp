@@ -194,6 +194,9 @@ void VisitSession(C& c, V& v) {
   v("session.correction_gate_weak_axis_ratio", s.correction_gate.weak_axis_ratio, Bounds{1, 1e3},
     "correction gate: ... or that exceeds it in position along a direction this many times less "
     "constrained (σ, the refinement's covariance) than the best");
+  v("session.correction_gate_refuses_unvalidated", s.correction_gate.refuse_unvalidated,
+    "correction gate: a correction beyond the bound by a refinement the rules did not validate is "
+    "refused whatever its support (the unconfirmed scan keeps the prediction)");
   v("session.correction_gate_agree_factor", s.correction_gate.agree_factor, Bounds{0, 1e3},
     "correction gate: a refused posture stands when the next localised scan lands within this "
     "many median corrections of it");
@@ -348,6 +351,10 @@ void VisitLoopClosure(C& c, V& v) {
   v("loop_closure.confirm_from_run", l.confirm_from_run,
     "the scans between a run's first and last search only the smallest window, around where "
     "the run puts them (the first and last search the whole window)");
+  v("loop_closure.set_aside_whole_batch", l.set_aside_whole_batch,
+    "when the solve sets aside an edge of a batch of agreeing closures, the graph is solved again "
+    "from where it stood: with the batch but without its odometry lesson when its closure missed "
+    "the odometry chain by more than the matched one and agree_m, else (or then too) without it");
   v("loop_closure.sigma_floor_m", l.sigma_floor_m, Bounds{1e-6, 1e3},
     "added to the refinement's position σ in the graph's edges, m ...");
   v("loop_closure.sigma_floor_rad", l.sigma_floor_rad, Bounds{1e-6, 10}, "... heading σ, rad");

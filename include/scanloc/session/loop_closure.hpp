@@ -83,6 +83,15 @@ struct LoopClosureOptions {
   double sigma_floor_m = 0.005;
   double sigma_floor_rad = 0.001;
   PoseGraphOptions graph;
+  // A batch of agreeing closures is one measurement. When the solve that takes it in sets aside
+  // any of its edges (χ² beyond graph.closure_rejection_chi2), the graph is solved again from where
+  // it stood before the batch: first, when the batch taught the odometry model and its closure
+  // misses the odometry chain by more than the matched chain and agree_m, with the batch and
+  // without that lesson (the odometry it trusted may be what bent the graph away from the batch);
+  // otherwise, or when the batch is set aside again, without the batch, its lesson kept. The solve
+  // that set it aside no longer leaves its bend in the map (Fr079 seen over 120°: 2 m and 36° at
+  // scan 997, docs/BENCHMARKS.md, "Unvalidated corrections, and a batch its own lesson bent away").
+  bool set_aside_whole_batch = true;
   // Consecutive nodes are linked by their odometry too, once a closure has shown how good it is
   // (OdometryModel): each confirmed closure teaches the model, and every odometry edge is weighed
   // again before the solve.
@@ -268,6 +277,22 @@ class LoopCloser {
   bool SolveLater(ClosureAttempt& attempt) const;
   void Solve(ClosureAttempt& attempt);
   PoseGraphSummary SolveGraph(double& largest_shift_m, std::size_t hold_before);
+  // The graph and the odometry model as a batch of closures found them: its edges are those from
+  // `first` on, solved with the nodes before `hold` held.
+  struct BeforeBatch {
+    std::vector<Pose2D> nodes;
+    std::vector<bool> active;  // each edge's, the batch's included
+    std::size_t first = 0, hold = 0;
+    OdometryModel model;
+    std::size_t taught = 0;
+  };
+  PoseGraphSummary SolveAgain(ClosureAttempt& attempt, const BeforeBatch& before);
+  // Whether the solve set aside one of the edges from `first` on (the batch just added).
+  bool BatchSetAside(std::size_t first) const;
+  // The nodes and the closures' activity put back as they were before the batch, the batch's
+  // edges active or not.
+  void Restore(const BeforeBatch& before, bool batch_active);
+  void Unlearn(const OdometryModel& model, std::size_t taught);
   // The odometry model taught by one more confirmed closure (when every node it spans has
   // odometry), and every odometry edge weighed again.
   void LearnOdometry(const PoseGraphEdge& closure);
