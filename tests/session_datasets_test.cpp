@@ -201,9 +201,9 @@ TEST_F(SessionOnPublicLog, Fr079KeptAScanAMetreHoldsItsTrackThroughTheReversals)
 // than the laser signature allows, and 150 scans in a row fail rule 2. Their refinements, kept as
 // unconfirmed guesses, turned the posture 55° and moved it 6.4 m while the correction gate let
 // turns through as an odometry's slip, and the session never found its map again: 0.62 m mean,
-// 20.5 m max. A refinement the rules rejected is now refused beyond the gate's bound whatever its
-// support (correction_gate.hpp, refuse_unvalidated): measured 2026-12-07, 0.036 m mean, 0.35 m
-// max (as logged over 180°: 0.035 m, 0.40 m).
+// 20.5 m max. Within such a stretch, a refinement the rules rejected is now refused beyond the
+// gate's bound whatever its support (correction_gate.hpp, refuse_unvalidated): measured
+// 2026-12-07, 0.036 m mean, 0.35 m max (as logged over 180°: 0.035 m, 0.40 m).
 TEST_F(SessionOnPublicLog, AcesSeenOver120DegreesKeepsItsMapThroughAStretchTheRulesReject) {
   SKIP_WITHOUT_LOGS();
   const std::string narrow = Variant("narrow", "aces", "aces-120.clf", {"120"});

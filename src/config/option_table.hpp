@@ -195,8 +195,9 @@ void VisitSession(C& c, V& v) {
     "correction gate: ... or that exceeds it in position along a direction this many times less "
     "constrained (σ, the refinement's covariance) than the best");
   v("session.correction_gate_refuses_unvalidated", s.correction_gate.refuse_unvalidated,
-    "correction gate: a correction beyond the bound by a refinement the rules did not validate is "
-    "refused whatever its support (the unconfirmed scan keeps the prediction)");
+    "correction gate: after the first unconfirmed scan in a row, a correction beyond the bound by "
+    "a refinement the rules did not validate is refused whatever its support (the scan keeps the "
+    "prediction)");
   v("session.correction_gate_agree_factor", s.correction_gate.agree_factor, Bounds{0, 1e3},
     "correction gate: a refused posture stands when the next localised scan lands within this "
     "many median corrections of it");

@@ -75,12 +75,17 @@ std::optional<CorrectionBound> CorrectionGate::Bound(int unconfirmed) const {
                          scale * std::max(kFloorRad, rotations_rad_.UpperMedian())};
 }
 
+bool CorrectionGate::Unvalidated(const RefinementSupport& support, int unconfirmed) const {
+  return options_.refuse_unvalidated && !support.validated && unconfirmed > 0;
+}
+
 bool CorrectionGate::Unsupported(const CorrectionBound& bound, const Pose2D& prediction,
-                                 const Pose2D& refined, const RefinementSupport& support) const {
+                                 const Pose2D& refined, const RefinementSupport& support,
+                                 int unconfirmed) const {
   const Pose2D correction = Between(prediction, refined);
   if (!bound.Exceeded(correction)) return false;
   if (LowOverlap(support.match_ratio)) return true;  // (Bound needs min_samples as LowOverlap)
-  if (!support.validated && options_.refuse_unvalidated) return true;
+  if (Unvalidated(support, unconfirmed)) return true;
   // A slide: beyond the bound in position only (a turn where the odometry slipped moves the
   // position with the heading), along the weak axis or still under way.
   if (bound.ExceededInHeading(correction)) return false;
@@ -91,12 +96,11 @@ bool CorrectionGate::Refuses(const Pose2D& prediction, const Pose2D& refined,
                              const RefinementSupport& support, int unconfirmed) {
   const std::optional<CorrectionBound> bound = Bound(unconfirmed);
   const std::optional<Pose2D> refused = std::exchange(refused_, std::nullopt);
-  if (!bound || !Unsupported(*bound, prediction, refined, support)) return false;
-  // Two refinements the rules rejected agree on nothing: they started from the same turned
-  // candidates, in the same place the scans do not fit.
-  const bool unvalidated = !support.validated && options_.refuse_unvalidated;
+  if (!bound || !Unsupported(*bound, prediction, refined, support, unconfirmed)) return false;
+  // Two refinements the rules rejected within a stretch they reject agree on nothing: they
+  // started from the same turned candidates, in the same place the scans do not fit.
   const double agree = options_.agree_factor / options_.factor;
-  if (refused && !unvalidated &&
+  if (refused && !Unvalidated(support, unconfirmed) &&
       !CorrectionBound{agree * bound->translation_m, agree * bound->rotation_rad}.Exceeded(
           Between(*refused, refined)))
     return false;

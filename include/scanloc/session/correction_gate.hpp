@@ -43,12 +43,15 @@ struct CorrectionGateOptions {
   // standard deviation (the refinement's covariance) is at least this many times the
   // best-constrained direction's, or by a refinement that did not converge.
   double weak_axis_ratio = 3.0;
-  // A correction beyond the bound by a refinement the rules did not validate is refused whatever
-  // its support: the exemptions above (a turn where the odometry slipped, a converged fit along
-  // well-constrained directions, a refused posture the next scan agrees with) need a scan the
-  // rules accept. ACES seen over 120° turned 55° and
-  // moved 6.4 m on a scan rule 2 rejected, 150 unconfirmed scans into a cluttered stretch
-  // (docs/BENCHMARKS.md, "Unvalidated corrections, and a batch its own lesson bent away").
+  // Within a stretch of unconfirmed scans (after the first), a correction beyond the bound by a
+  // refinement the rules did not validate is refused whatever its support: the exemptions above
+  // (a turn where the odometry slipped, a converged fit along well-constrained directions, a
+  // refused posture the next scan agrees with) need a scan the rules accept, or the first scan
+  // the rules reject after confirmed ones, where a slip of the odometry is what failed it. ACES
+  // seen over 120° turned 55° and moved 6.4 m on a scan rule 2 rejected, 150 unconfirmed scans
+  // into a cluttered stretch; Fr079 kept a scan a metre slipped 13° at scan 113, the first its
+  // rules rejected, and the refinement found the slip (docs/BENCHMARKS.md, "Unvalidated
+  // corrections, and a batch its own lesson bent away").
   bool refuse_unvalidated = true;
   // Throws std::invalid_argument naming the first option out of its domain.
   void Validate() const;
@@ -119,7 +122,10 @@ class CorrectionGate {
                      const RefinementSupport& support) const;
   // Whether the scan fails to support a correction beyond `bound` (see the options).
   bool Unsupported(const CorrectionBound& bound, const Pose2D& prediction, const Pose2D& refined,
-                   const RefinementSupport& support) const;
+                   const RefinementSupport& support, int unconfirmed) const;
+  // Whether the refinement is one the rules rejected within a stretch they reject (see
+  // refuse_unvalidated).
+  bool Unvalidated(const RefinementSupport& support, int unconfirmed) const;
 };
 
 }  // namespace scanloc
