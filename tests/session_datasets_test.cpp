@@ -68,6 +68,14 @@ class SessionOnPublicLog : public testing::TemporaryDirTest {
     return made.exited && made.exit_code == 0 ? path : "";
   }
 
+  // The default session on the first `scans` scans of LOG as a laser seeing only its central
+  // 120° would have logged it (scripts/log-variants.py narrow).
+  RelationsEvaluation RunSeenOver120Degrees(const std::string& log, int scans) {
+    const std::string narrow = Variant("narrow", log, log + "-120.clf", {"120"});
+    EXPECT_FALSE(narrow.empty());
+    return RunPrefix(log, scans, {}, narrow);
+  }
+
   testing::ScanlocRun run_;  // the last RunPrefix's
 };
 
@@ -206,12 +214,7 @@ TEST_F(SessionOnPublicLog, Fr079KeptAScanAMetreHoldsItsTrackThroughTheReversals)
 // 2026-12-07, 0.036 m mean, 0.35 m max (as logged over 180°: 0.035 m, 0.40 m).
 TEST_F(SessionOnPublicLog, AcesSeenOver120DegreesKeepsItsMapThroughAStretchTheRulesReject) {
   SKIP_WITHOUT_LOGS();
-  const std::string narrow = Variant("narrow", "aces", "aces-120.clf", {"120"});
-  ASSERT_FALSE(narrow.empty());
-  const RelationsEvaluation e = RunPrefix("aces", 100000, {}, narrow);
-  EXPECT_GE(e.matched, 1200u);
-  EXPECT_LT(e.translation_m.mean, 0.05);
-  EXPECT_LT(e.translation_m.max, 0.5);
+  ExpectAccurate(RunSeenOver120Degrees("aces", 100000), 1200, 0.05);
 }
 
 // Fr079 seen over 120°, its first 1,200 scans. At scan 997 a batch of closures taught the
@@ -223,9 +226,7 @@ TEST_F(SessionOnPublicLog, AcesSeenOver120DegreesKeepsItsMapThroughAStretchTheRu
 // 0.028 m mean, 0.17 m max.
 TEST_F(SessionOnPublicLog, Fr079SeenOver120DegreesHoldsABatchItsOwnOdometryLessonBentAway) {
   SKIP_WITHOUT_LOGS();
-  const std::string narrow = Variant("narrow", "fr079", "fr079-120.clf", {"120"});
-  ASSERT_FALSE(narrow.empty());
-  ExpectAccurate(RunPrefix("fr079", 1200, {}, narrow), 250, 0.05);
+  ExpectAccurate(RunSeenOver120Degrees("fr079", 1200), 250, 0.05);
 }
 
 }  // namespace
