@@ -5,6 +5,7 @@
   scripts/log-variants.py short-range LOG.clf.gz OUT.clf [RANGE_M]
   scripts/log-variants.py range-noise LOG.clf.gz OUT.clf [SIGMA_M [SEED]]
   scripts/log-variants.py narrow LOG.clf.gz OUT.clf [FOV_DEG]
+  scripts/log-variants.py odometry-scale LOG.clf.gz OUT.clf [DISTANCE_SCALE [TURN_SCALE]]
 
 - sparse: only the scans with a reference pose, one after every 0.8 m or 0.3 rad of the log's
   odometry (a log kept as the Radish logs are, a scan every metre or so). Every other line (ODOM,
@@ -19,6 +20,11 @@
 - narrow: every FLASER reading more than FOV_DEG/2 (default 120/2) from straight ahead becomes the
   log's no-return value (its largest reading): a laser that sees less to the sides (a narrower
   scanner, or one half hidden by the robot's own body). The log's own relations still apply.
+- odometry-scale: the odometry as a miscalibrated robot would report it: every step it logs
+  (ODOM lines and FLASER's odometry, in the order of the log) driven DISTANCE_SCALE times as far
+  (default 1.05, a wheel radius 5 % too large) and turned TURN_SCALE times as much (default 1.03,
+  a wheelbase 3 % too short), integrated again from the first pose. FLASER's laser pose keeps its
+  offset from the odometry. The log's own relations still apply.
 """
 import bisect
 import gzip
@@ -142,6 +148,46 @@ def narrow(log, out_log, fov_deg):
             out.write(line)
 
 
+def compose(a, d):
+    c, s = math.cos(a[2]), math.sin(a[2])
+    return a[0] + c * d[0] - s * d[1], a[1] + s * d[0] + c * d[1], a[2] + d[2]
+
+
+class ScaledOdometry:
+    """The log's odometry poses, one after another, re-integrated with scaled steps."""
+
+    def __init__(self, distance_scale, turn_scale):
+        self.distance_scale, self.turn_scale = distance_scale, turn_scale
+        self.last = self.scaled = None
+
+    def __call__(self, pose):
+        if self.last is None:
+            self.last = self.scaled = pose
+            return pose
+        dx, dy, dyaw = relative(self.last, pose)
+        step = (self.distance_scale * dx, self.distance_scale * dy, self.turn_scale * dyaw)
+        self.last, self.scaled = pose, compose(self.scaled, step)
+        return self.scaled
+
+
+def odometry_scale(log, out_log, distance_scale, turn_scale):
+    scaled = ScaledOdometry(distance_scale, turn_scale)
+    pose_text = lambda p: ["%.6f" % p[0], "%.6f" % p[1], "%.6f" % math.remainder(p[2], 2 * math.pi)]
+    with open(out_log, "w") as out:
+        for line in lines(log):
+            f = line.split()
+            if f and f[0] == "ODOM" and len(f) >= 4:
+                line = " ".join([f[0]] + pose_text(scaled(tuple(map(float, f[1:4])))) + f[4:]) + "\n"
+            elif f and f[0] == "FLASER":
+                n, rest = flaser(f)
+                laser, odometry = tuple(map(float, rest[0:3])), tuple(map(float, rest[3:6]))
+                new_odometry = scaled(odometry)
+                new_laser = compose(new_odometry, relative(odometry, laser))
+                line = " ".join(f[:2 + n] + pose_text(new_laser) + pose_text(new_odometry) +
+                                rest[6:]) + "\n"
+            out.write(line)
+
+
 def main():
     if len(sys.argv) >= 6 and sys.argv[1] == "sparse":
         sparse(*sys.argv[2:6])
@@ -152,6 +198,9 @@ def main():
                     int(sys.argv[5]) if len(sys.argv) == 6 else 1)
     elif len(sys.argv) in (4, 5) and sys.argv[1] == "narrow":
         narrow(sys.argv[2], sys.argv[3], float(sys.argv[4]) if len(sys.argv) == 5 else 120.0)
+    elif len(sys.argv) in (4, 5, 6) and sys.argv[1] == "odometry-scale":
+        odometry_scale(sys.argv[2], sys.argv[3], float(sys.argv[4]) if len(sys.argv) >= 5 else 1.05,
+                       float(sys.argv[5]) if len(sys.argv) == 6 else 1.03)
     else:
         sys.exit(__doc__.strip())
 
