@@ -4,8 +4,10 @@
 #include <cmath>
 #include <csignal>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <stdexcept>
 
 #include "scanloc/common/output_folder.hpp"
@@ -96,6 +98,37 @@ void PrintLocalisation(const SessionCounts& c) {
               << "guesses only\n";
 }
 
+// The odometry's calibration the confirmed steps taught, one line; a warning when a scale is
+// significant and was not applied.
+void PrintOdometryCalibration(const nlohmann::json& summary) {
+  if (!summary.contains("odometry_calibration")) return;
+  const nlohmann::json& c = summary["odometry_calibration"];
+  const bool applied = c["applied"].get<bool>();
+  auto scale = [](const nlohmann::json& s) {
+    std::ostringstream text;
+    text << "× " << s["fitted"].get<double>() << " ± " << s["standard_error"].get<double>()
+         << (s["significant"].get<bool>() ? "" : " (not significant)");
+    return text.str();
+  };
+  std::cout << "odometry calibration: from " << c["samples"] << " confirmed steps, distance "
+            << scale(c["distance"]) << ", turn " << scale(c["turn"])
+            << (applied ? " (applied)" : "") << "\n";
+  auto off = [](const nlohmann::json& s) {  // how far the odometry is off, per cent
+    return 100.0 * (1.0 / s["fitted"].get<double>() - 1.0);
+  };
+  const bool distance = c["distance"]["significant"].get<bool>();
+  const bool turn = c["turn"]["significant"].get<bool>();
+  if (applied || !(distance || turn)) return;
+  std::ostringstream text;
+  text << std::showpos << std::fixed << std::setprecision(1);
+  if (distance) text << " distances " << off(c["distance"]) << " %";
+  if (distance && turn) text << " and";
+  if (turn) text << " turns " << off(c["turn"]) << " %";
+  std::cerr << "warning: the confirmed scans say the odometry reports" << text.str()
+            << " off; --set session.odometry_calibration_apply=true scales it by what they "
+               "say\n";
+}
+
 // What the closures taught of the odometry (loop_closure.odometry_edges), one line.
 void PrintOdometryModel(const nlohmann::json& loop_closure) {
   if (!loop_closure.contains("odometry_model")) return;
@@ -151,6 +184,7 @@ void PrintOutcome(const SessionRun& run, const nlohmann::json& summary, const Ru
     }
     PrintOdometryModel(l);
   }
+  PrintOdometryCalibration(summary);
   std::cout << "wrote " << folder.directory() << "/{iterations.jsonl,trajectory.tum,map.pcd,"
             << (grid ? "map.pgm,map.yaml," : "") << (closing ? "graph.g2o," : "")
             << (corrected ? "trajectory-online.tum," : "") << "summary.json}\n";

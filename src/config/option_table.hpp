@@ -216,6 +216,26 @@ void VisitSession(C& c, V& v) {
   v("session.correction_drift_min_samples", s.correction_drift.min_samples, Bounds{1, 1e6},
     "slide check: sums learned before it closes (until then a refinement stopped at its "
     "iteration cap still moving along its weakest axis is refused as a slide)");
+  v("session.odometry_calibration", s.odometry_calibration.enabled,
+    "learn the odometry's distance and turn scales from the confirmed steps, and report them");
+  v("session.odometry_calibration_apply", s.odometry_calibration.apply,
+    "odometry calibration: scale the odometry by the significant scales before anything uses it");
+  v("session.odometry_calibration_window", s.odometry_calibration.window, Bounds{1, 1e7},
+    "odometry calibration: confirmed steps remembered (the most recent)");
+  v("session.odometry_calibration_min_samples", s.odometry_calibration.min_samples, Bounds{1, 1e7},
+    "odometry calibration: steps that moved needed before a scale is applied");
+  v("session.odometry_calibration_min_change", s.odometry_calibration.min_change, Bounds{0, 1},
+    "odometry calibration: a scale is significant while it stands farther than this from 1 ...");
+  v("session.odometry_calibration_significance", s.odometry_calibration.significance,
+    Bounds{0, 1e3}, "... and farther than this many of its standard errors");
+  v("session.odometry_calibration_min_step_m", s.odometry_calibration.min_step_m, Bounds{0, 1e3},
+    "odometry calibration: a sample spans at least this much of the odometry's driving, m ...");
+  v("session.odometry_calibration_min_step_rad", s.odometry_calibration.min_step_rad, kAngle,
+    "... or this much turning, rad");
+  v("session.odometry_calibration_refit_every", s.odometry_calibration.refit_every, Bounds{1, 1e7},
+    "odometry calibration: the scales are fitted again after this many steps");
+  v("session.odometry_calibration_max_scale", s.odometry_calibration.max_scale, Bounds{1.001, 100},
+    "odometry calibration: a scale beyond [1/this, this] is not believed");
   v("session.free_space_margin_m", s.extension.free_space_margin_m, Bounds{0, 100},
     "carving: a point more than margin + margin_per_m·r in front of a return is seen through, m; "
     "0: no carving");

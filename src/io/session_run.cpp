@@ -100,6 +100,22 @@ nlohmann::json OdometryModelSummary(const OdometryModel& model, const PoseGraph&
   return json;
 }
 
+// The odometry's calibration: whether it is applied, and each scale's value in use, last fit,
+// standard error, samples and significance.
+nlohmann::json OdometryCalibrationSummary(const OdometryCalibration& calibration) {
+  auto scale = [](const OdometryScale& s) {
+    return nlohmann::json{{"value", s.value},
+                          {"fitted", s.fitted},
+                          {"standard_error", s.standard_error},
+                          {"samples", s.samples},
+                          {"significant", s.significant}};
+  };
+  return {{"samples", calibration.samples()},
+          {"applied", calibration.applies()},
+          {"distance", scale(calibration.distance())},
+          {"turn", scale(calibration.turn())}};
+}
+
 std::size_t ClosuresKept(const PoseGraph& graph) {
   std::size_t kept = 0;
   for (const PoseGraphEdge& edge : graph.edges())
@@ -315,6 +331,9 @@ nlohmann::json SummaryJson(const SessionRun& run, const IterationSource& source)
                                 {"samples", SignatureSamples(*signature)}};
     summary["map_signature_wall_s"] = signature->wall_s;  // a timing, beside the others
   }
+  if (const OdometryCalibration* calibration =
+          run.session ? run.session->odometry_calibration() : nullptr)
+    summary["odometry_calibration"] = OdometryCalibrationSummary(*calibration);
   if (run.session && run.session->pose_graph()) {
     const PoseGraph& graph = *run.session->pose_graph();
     summary["loop_closure"] = {{"nodes", graph.nodes().size()},

@@ -60,6 +60,7 @@ void SessionOptions::Validate() const {
   motion_prior.Validate();
   correction_gate.Validate();
   correction_drift.Validate();
+  odometry_calibration.Validate();
   recovery.Validate();
   motion_search.Validate();
   loop_closure.Validate();
@@ -81,7 +82,8 @@ Session::Session(const SessionConfig& config, LaserMounting mounting, LineMap li
       correction_drift_(options_.correction_drift),
       loop_(options_.loop_closure, mounting_),
       motion_(options_.motion_search),
-      frozen_(options_.motion_search.frozen_odometry_range_change_m) {
+      frozen_(options_.motion_search.frozen_odometry_range_change_m),
+      calibration_(options_.odometry_calibration) {
   options_.Validate();
   if (options_.loop_closure.enabled) loop_.SetPriorMap(point_map_);
   localisation_.validation.Validate();
@@ -102,9 +104,10 @@ IterationRecord Session::Replay(const Iteration& iteration, const RecordedIterat
 
 IterationRecord Session::Step(const Iteration& given, const RecordedIteration* recorded) {
   const auto start = std::chrono::steady_clock::now();
-  std::optional<Iteration> stripped;
+  std::optional<Iteration> stripped, calibrated;
   bool frozen = false;
-  const Iteration& iteration = UsableOdometry(given, stripped, frozen);
+  const Iteration& usable = UsableOdometry(given, stripped, frozen);
+  const Iteration& iteration = CalibratedOdometry(usable, calibrated);
   IterationRecord record = BeginRecord(iteration, count_);
   record.odometry_frozen = frozen;
   record.prediction = Predict(iteration);
@@ -139,6 +142,7 @@ IterationRecord Session::Step(const Iteration& given, const RecordedIteration* r
     covariance = kept->refinement->covariance;
   }
   MaybeCloseLoop(record, iteration, covariance);
+  LearnCalibration(record, usable.odometry);
   if (iteration.odometry) last_odometry_ = iteration.odometry;
   ++count_;
   record.map_points = point_map_.live_size();
@@ -150,6 +154,51 @@ const Iteration& Session::UsableOdometry(const Iteration& given, std::optional<I
                                          bool& frozen) {
   frozen = !options_.ignore_odometry && frozen_.SetAside(given);
   return WithoutOdometryIf(options_.ignore_odometry || frozen, given, stripped);
+}
+
+// The log's odometry steps, scaled by the calibration, integrated from its first pose. Until a
+// scale is applied the log's odometry is passed on as it is.
+const Iteration& Session::CalibratedOdometry(const Iteration& usable,
+                                             std::optional<Iteration>& calibrated) {
+  if (!options_.odometry_calibration.enabled || !usable.odometry) return usable;
+  const Pose2D raw = *usable.odometry;
+  calibrated_apart_ =
+      calibrated_apart_ || calibration_.distance().value != 1.0 || calibration_.turn().value != 1.0;
+  calibrated_odometry_ =
+      calibrated_apart_ && raw_odometry_
+          ? calibrated_odometry_ * calibration_.Calibrated(Between(*raw_odometry_, raw))
+          : raw;
+  raw_odometry_ = raw;
+  if (!calibrated_apart_) return usable;
+  calibrated.emplace(usable);
+  calibrated->odometry = calibrated_odometry_;
+  return *calibrated;
+}
+
+// A confirmed scan teaches the calibration the step from an earlier confirmed one (at least
+// min_step_m or min_step_rad of the log's odometry back), when every scan between was confirmed or
+// passed over (not localised) and nothing moved the session: the log's odometry over that step
+// against the session's. A scan localised without confirmation, searched for, or whose correction
+// a check refused ends the step.
+void Session::LearnCalibration(const IterationRecord& record, const std::optional<Pose2D>& raw) {
+  if (!options_.odometry_calibration.enabled || record.skipped) return;
+  const bool confirmed = record.validated && raw && !record.slide_refused &&
+                         !record.beyond_odometry && !record.search && !record.recovered;
+  if (!confirmed) {
+    calibration_anchor_.reset();
+    return;
+  }
+  if (calibration_anchor_ && !record.first &&
+      calibration_.Learn(Between(calibration_anchor_->odometry, *raw),
+                         Between(calibration_anchor_->posture, record.T_world_robot)))
+    calibration_anchor_.reset();
+  const bool unmoved = last_pose_.x_m == record.T_world_robot.x_m &&
+                       last_pose_.y_m == record.T_world_robot.y_m &&
+                       last_pose_.yaw_rad == record.T_world_robot.yaw_rad;
+  if (!unmoved)
+    calibration_anchor_.reset();
+  else if (!calibration_anchor_)
+    calibration_anchor_ = CalibrationAnchor{*raw, record.T_world_robot};
 }
 
 MapView Session::View() const {
@@ -573,6 +622,10 @@ std::vector<std::optional<Pose2D>> Session::CorrectedPostures() const {
 
 const PoseGraph* Session::pose_graph() const {
   return options_.loop_closure.enabled ? &loop_.graph() : nullptr;
+}
+
+const OdometryCalibration* Session::odometry_calibration() const {
+  return options_.odometry_calibration.enabled ? &calibration_ : nullptr;
 }
 
 const OdometryModel* Session::odometry_model() const {

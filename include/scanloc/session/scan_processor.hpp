@@ -14,6 +14,7 @@
 #include "scanloc/session/localisation.hpp"
 #include "scanloc/session/loop_closure.hpp"
 #include "scanloc/session/map_signature.hpp"
+#include "scanloc/session/odometry_calibration.hpp"
 #include "scanloc/session/replay.hpp"
 #include "scanloc/session/turn_dispute.hpp"
 #include "scanloc/session/wide_search.hpp"
@@ -155,6 +156,8 @@ class ScanProcessor {
   virtual const PoseGraph* pose_graph() const { return nullptr; }
   // The odometry model its loop closures taught, when the processor keeps a pose graph.
   virtual const OdometryModel* odometry_model() const { return nullptr; }
+  // The odometry's calibration learned from the confirmed steps, when the processor learns one.
+  virtual const OdometryCalibration* odometry_calibration() const { return nullptr; }
   // What the final map matching did (final_map_matching.hpp), when the processor ran it.
   virtual std::optional<FinalMatchSummary> final_match() const { return {}; }
 };

@@ -21,6 +21,7 @@
 #include "scanloc/session/map_extension.hpp"
 #include "scanloc/session/map_signature.hpp"
 #include "scanloc/session/motion_search.hpp"
+#include "scanloc/session/odometry_calibration.hpp"
 #include "scanloc/session/recovery.hpp"
 #include "scanloc/session/scan_processor.hpp"
 
@@ -118,6 +119,9 @@ struct SessionOptions {
   // Confirmed corrections that would add up to a slide over the last stretch of path are refused
   // (correction_drift.hpp).
   CorrectionDriftOptions correction_drift;
+  // The odometry's distance and turn scales, learned from the confirmed steps and applied to the
+  // odometry before anything uses it (odometry_calibration.hpp).
+  OdometryCalibrationOptions odometry_calibration;
   // When the session counts itself lost, and the wide search it then adds.
   RecoveryOptions recovery;
   // The log's odometry is not used: every scan is localised as in a log without odometry
@@ -174,6 +178,7 @@ class Session : public ScanProcessor {
   std::vector<std::optional<Pose2D>> CorrectedPostures() const override;
   const PoseGraph* pose_graph() const override;
   const OdometryModel* odometry_model() const override;
+  const OdometryCalibration* odometry_calibration() const override;
   std::optional<MapSignature> map_signature() const override { return map_signature_; }
   // What the final map matching did (none before Finish, or with it off).
   std::optional<FinalMatchSummary> final_match() const override { return final_match_; }
@@ -221,6 +226,11 @@ class Session : public ScanProcessor {
   // With loop_closure.tracking_path_m: the session tracks against the newest nodes only.
   bool Tracking() const;
   bool WithdrawDisputedTurn(IterationRecord& record);
+  // The iteration with its odometry calibrated (a copy in `calibrated` once the calibrated
+  // odometry differs from the log's); `raw` the log's odometry.
+  const Iteration& CalibratedOdometry(const Iteration& usable,
+                                      std::optional<Iteration>& calibrated);
+  void LearnCalibration(const IterationRecord& record, const std::optional<Pose2D>& raw);
   void RenderTracked();
   void MatchOnFinalMap();
 
@@ -245,6 +255,16 @@ class Session : public ScanProcessor {
   std::optional<Pose2D> last_odometry_;
   Pose2D last_localised_odometry_;  // odometry at the last localised iteration
   std::optional<Pose2D> last_inserted_pose_;
+  OdometryCalibration calibration_;
+  std::optional<Pose2D> raw_odometry_;  // the log's odometry at the last iteration with one
+  Pose2D calibrated_odometry_;          // ... and the calibrated odometry there
+  bool calibrated_apart_ = false;       // the calibrated odometry has left the log's
+  // The log's odometry and the posture at the last confirmed scan, while nothing moved the
+  // session since: the start of the calibration's next sample.
+  struct CalibrationAnchor {
+    Pose2D odometry, posture;
+  };
+  std::optional<CalibrationAnchor> calibration_anchor_;
 };
 
 }  // namespace scanloc
