@@ -147,6 +147,31 @@ TEST(CorrectionGate, AnUnvalidatedCorrectionBeyondTheBoundIsRefusedWithinAnUncon
   EXPECT_FALSE(gate.Refuses(prediction, turned, rejected, 1));
 }
 
+// Eight scans into a stretch the rules reject the bound has widened threefold, for an odometry
+// whose error grew over the stretch; a refinement the rules rejected is held to the bound of one
+// step (ACES with a laser 1 cm noisier, scans 2785-2786: 9.7° and 12.4° from the prediction on
+// unconfirmed scans, within the widened 21°, and the session lost its map).
+TEST(CorrectionGate, WithUnvalidatedOneStepAnUnvalidatedCorrectionIsHeldToTheBoundOfOneStep) {
+  CorrectionGateOptions one_step;
+  one_step.unvalidated_one_step = true;
+  const Eigen::Matrix2d round = Eigen::Vector2d(0.01 * 0.01, 0.01 * 0.01).asDiagonal();
+  const Pose2D prediction{1.0, 1.0, 0.0};
+  const Pose2D turned{1.0, 1.0, 0.08}, moved{1.3, 1.0, 0.0};  // beyond 0.16 m / 0.04 rad
+  const RefinementSupport rejected{0.8, round, true, false}, validated{0.8, round, true, true};
+  for (const Pose2D& refined : {turned, moved}) {
+    CorrectionGate gate = Learned(one_step);
+    ASSERT_FALSE(gate.Bound(8)->Exceeded(Between(prediction, refined)));  // within the widened
+    EXPECT_TRUE(gate.Refuses(prediction, refined, rejected, 8));
+    gate = Learned(one_step);
+    EXPECT_FALSE(gate.Refuses(prediction, refined, validated, 8));
+    gate = Learned(
+        one_step);  // the first unconfirmed scan: a slip of the odometry may be what failed it
+    EXPECT_FALSE(gate.Refuses(prediction, refined, rejected, 0));
+    gate = Learned();  // the default: the widened bound
+    EXPECT_FALSE(gate.Refuses(prediction, refined, rejected, 8));
+  }
+}
+
 // Before the slide check has learned, no correction is large: a slide is told by the
 // refinement alone (orebro, a laser 1 cm noisier: scan 11 slid 0.35 m along a weak axis in 15
 // outer iterations, 8 scans into the session).

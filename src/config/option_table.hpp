@@ -198,6 +198,9 @@ void VisitSession(C& c, V& v) {
     "correction gate: after the first unconfirmed scan in a row, a correction beyond the bound by "
     "a refinement the rules did not validate is refused whatever its support (the scan keeps the "
     "prediction)");
+  v("session.correction_gate_unvalidated_one_step", s.correction_gate.unvalidated_one_step,
+    "correction gate: ... judged against the bound of one step, not the bound widened by the "
+    "unconfirmed stretch (off by default)");
   v("session.correction_gate_agree_factor", s.correction_gate.agree_factor, Bounds{0, 1e3},
     "correction gate: a refused posture stands when the next localised scan lands within this "
     "many median corrections of it");

@@ -94,7 +94,8 @@ bool CorrectionGate::Unsupported(const CorrectionBound& bound, const Pose2D& pre
 
 bool CorrectionGate::Refuses(const Pose2D& prediction, const Pose2D& refined,
                              const RefinementSupport& support, int unconfirmed) {
-  const std::optional<CorrectionBound> bound = Bound(unconfirmed);
+  const bool one_step = options_.unvalidated_one_step && Unvalidated(support, unconfirmed);
+  const std::optional<CorrectionBound> bound = Bound(one_step ? 0 : unconfirmed);
   const std::optional<Pose2D> refused = std::exchange(refused_, std::nullopt);
   if (!bound || !Unsupported(*bound, prediction, refined, support, unconfirmed)) return false;
   // Two refinements the rules rejected within a stretch they reject agree on nothing: they

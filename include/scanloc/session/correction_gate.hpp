@@ -53,6 +53,13 @@ struct CorrectionGateOptions {
   // rules rejected, and the refinement found the slip (docs/BENCHMARKS.md, "Unvalidated
   // corrections, and a batch its own lesson bent away").
   bool refuse_unvalidated = true;
+  // ... and judged against the bound of one step, not the bound widened by the stretch's length:
+  // the widening lets the session follow an odometry whose error grew over the stretch once a
+  // scan confirms where it went, and a refinement the rules rejected confirms nothing. Off by
+  // default: it saved ACES with a laser 1 cm noisier (seed 3, odometry calibrated) and lost Intel
+  // seen over 120° (0.021 -> 0.54 m mean), whose unconfirmed refinements there followed the
+  // odometry's growing error (docs/BENCHMARKS.md, "A miscalibrated odometry").
+  bool unvalidated_one_step = false;
   // Throws std::invalid_argument naming the first option out of its domain.
   void Validate() const;
 };
