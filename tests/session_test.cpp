@@ -380,8 +380,9 @@ TEST(Session, TurnedCandidatesJoinOnlyWhenThePredictionFailsTheRules) {
   SessionOptions options;
   options.initial_pose = sequence.truth.front();
   options.heading_candidates_on_failure = true;
-  // The loop's 5 cm steps sit on the localise threshold: calibrated (3 % shorter), every other
-  // one is passed over, and this test is about the candidates of the scans localised.
+  // The loop's 5 cm steps sit on the localise threshold: with the odometry's scales applied
+  // (3 % shorter), every other one is passed over, and this test is about the candidates of the
+  // scans localised.
   options.odometry_calibration.enabled = false;
   Session session(SessionConfig{options, {}}, {}, {}, PointMap{});
   int alone = 0, joined = 0;
