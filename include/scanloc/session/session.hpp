@@ -119,8 +119,8 @@ struct SessionOptions {
   // Confirmed corrections that would add up to a slide over the last stretch of path are refused
   // (correction_drift.hpp).
   CorrectionDriftOptions correction_drift;
-  // The odometry's distance and turn scales, learned from the confirmed steps and applied to the
-  // odometry before anything uses it (odometry_calibration.hpp).
+  // The odometry's distance and turn scales, learned from the confirmed steps and reported; with
+  // apply, the odometry is scaled by them before anything uses it (odometry_calibration.hpp).
   OdometryCalibrationOptions odometry_calibration;
   // When the session counts itself lost, and the wide search it then adds.
   RecoveryOptions recovery;
@@ -227,9 +227,10 @@ class Session : public ScanProcessor {
   bool Tracking() const;
   bool WithdrawDisputedTurn(IterationRecord& record);
   // The iteration with its odometry calibrated (a copy in `calibrated` once the calibrated
-  // odometry differs from the log's); `raw` the log's odometry.
+  // odometry differs from the log's).
   const Iteration& CalibratedOdometry(const Iteration& usable,
                                       std::optional<Iteration>& calibrated);
+  // What the scan teaches the calibration; `raw` is the log's odometry at it.
   void LearnCalibration(const IterationRecord& record, const std::optional<Pose2D>& raw);
   void RenderTracked();
   void MatchOnFinalMap();
