@@ -211,9 +211,7 @@ struct CycleShortcut {
 CycleShortcut FindCycle(const std::vector<Pose2D>& visited, std::size_t from, const Pose2D& next,
                         int cap) {
   CycleShortcut cycle;
-  const auto same = [&](const Pose2D& p) {
-    return p.x_m == next.x_m && p.y_m == next.y_m && p.yaw_rad == next.yaw_rad;
-  };
+  const auto same = [&](const Pose2D& p) { return SamePosture(p, next); };
   const auto first = static_cast<std::size_t>(
       std::find_if(visited.begin() + std::min(from, visited.size()), visited.end(), same) -
       visited.begin());

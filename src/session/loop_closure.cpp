@@ -18,11 +18,6 @@ double Distance(const Pose2D& a, const Pose2D& b) {
   return (a.Translation() - b.Translation()).norm();
 }
 
-// The posture as given: an unconfirmed scan's posture is its prediction, copied.
-bool SamePosture(const Pose2D& a, const Pose2D& b) {
-  return a.x_m == b.x_m && a.y_m == b.y_m && a.yaw_rad == b.yaw_rad;
-}
-
 // The odometry holds a motion's heading when the model says it knows it at least as well as a
 // matched step knows its own (in the graph's units). Only then does its edge join the graph: an
 // odometry weaker than the matching in heading would add little, and what its model does not

@@ -22,10 +22,6 @@ std::string PoseText(const Pose2D& p) {
   return out.str();
 }
 
-bool SamePose(const Pose2D& a, const Pose2D& b) {
-  return a.x_m == b.x_m && a.y_m == b.y_m && a.yaw_rad == b.yaw_rad;
-}
-
 }  // namespace
 
 std::string DescribeReplayMismatch(const IterationRecord& now, const RecordedIteration& then) {
@@ -37,7 +33,7 @@ std::string DescribeReplayMismatch(const IterationRecord& now, const RecordedIte
   if (now.localisation.has_value() != then.localised)
     return Differs("localised", now.localisation.has_value(), then.localised);
   // A posture the replay computed itself (the prediction) must be the recorded one to the bit.
-  if (!then.localised && !SamePose(now.T_world_robot, then.T_world_robot))
+  if (!then.localised && !SamePosture(now.T_world_robot, then.T_world_robot))
     return Differs("the posture", PoseText(now.T_world_robot), PoseText(then.T_world_robot));
   if (then.localised && now.signature_expect_value_m != then.signature_expect_value_m)
     return Differs("the laser signature's bound", now.signature_expect_value_m,

@@ -192,10 +192,7 @@ void Session::LearnCalibration(const IterationRecord& record, const std::optiona
       calibration_.Learn(Between(calibration_anchor_->odometry, *raw),
                          Between(calibration_anchor_->posture, record.T_world_robot)))
     calibration_anchor_.reset();
-  const bool unmoved = last_pose_.x_m == record.T_world_robot.x_m &&
-                       last_pose_.y_m == record.T_world_robot.y_m &&
-                       last_pose_.yaw_rad == record.T_world_robot.yaw_rad;
-  if (!unmoved)
+  if (!SamePosture(last_pose_, record.T_world_robot))
     calibration_anchor_.reset();
   else if (!calibration_anchor_)
     calibration_anchor_ = CalibrationAnchor{*raw, record.T_world_robot};

@@ -51,6 +51,11 @@ struct PoseTransform {
 // Difference of two poses: a ⊖ b = b⁻¹ · a, the motion from b to a in b's frame.
 Pose2D Between(const Pose2D& from, const Pose2D& to);
 
+// The same posture to the bit: a posture carried over as it was, not one computed again.
+inline bool SamePosture(const Pose2D& a, const Pose2D& b) {
+  return a.x_m == b.x_m && a.y_m == b.y_m && a.yaw_rad == b.yaw_rad;
+}
+
 // The largest coordinate accepted from input: 1,000 km, beyond any map a planar laser builds.
 // Larger values are data errors, and would overflow the point map's integer cell indices.
 constexpr double kMaxCoordinateM = 1e6;
